@@ -1,0 +1,85 @@
+# Every dependency comes from a Debian package (scripts/setup installs them). A missing one
+# stops the configure step with the name of the package to install.
+
+function(patchwork_missing what package)
+  message(FATAL_ERROR "patchwork: ${what} not found. Install the Debian package '${package}' "
+                      "(or run scripts/setup, which installs everything).")
+endfunction()
+
+find_package(Eigen3 3.4 CONFIG QUIET)
+if(NOT TARGET Eigen3::Eigen)
+  patchwork_missing("Eigen 3.4" libeigen3-dev)
+endif()
+
+# OpenSubdiv: Debian 12's CMake config names static libraries that are not installed, so the
+# header and the shared osdCPU library are found by hand.
+find_path(PATCHWORK_OSD_INCLUDE opensubdiv/far/topologyRefiner.h)
+find_library(PATCHWORK_OSD_CPU osdCPU)
+if(NOT PATCHWORK_OSD_INCLUDE OR NOT PATCHWORK_OSD_CPU)
+  patchwork_missing("OpenSubdiv (opensubdiv/far/topologyRefiner.h, libosdCPU)" libosd-dev)
+endif()
+if(NOT TARGET patchwork_opensubdiv)
+  add_library(patchwork_opensubdiv SHARED IMPORTED GLOBAL)
+  set_target_properties(patchwork_opensubdiv PROPERTIES IMPORTED_LOCATION "${PATCHWORK_OSD_CPU}"
+                        INTERFACE_INCLUDE_DIRECTORIES "${PATCHWORK_OSD_INCLUDE}")
+endif()
+
+# OpenMesh ships a config without a version file: no version in the request.
+find_package(OpenMesh CONFIG QUIET)
+if(NOT TARGET OpenMeshCore)
+  patchwork_missing("OpenMesh" libopenmesh-dev)
+endif()
+
+find_package(CGAL CONFIG QUIET)
+if(NOT CGAL_FOUND)
+  patchwork_missing("CGAL" libcgal-dev)
+endif()
+
+# tinygltf is a shared library in Debian: never define TINYGLTF_IMPLEMENTATION.
+find_package(TinyGLTF CONFIG QUIET)
+if(NOT TARGET TinyGLTF::TinyGLTF)
+  patchwork_missing("tinygltf" libtinygltf-dev)
+endif()
+find_package(nlohmann_json CONFIG QUIET)
+if(NOT TARGET nlohmann_json::nlohmann_json)
+  patchwork_missing("nlohmann-json" nlohmann-json3-dev)
+endif()
+
+find_package(CLI11 CONFIG QUIET)
+if(NOT TARGET CLI11::CLI11)
+  patchwork_missing("CLI11" libcli11-dev)
+endif()
+find_package(meshoptimizer CONFIG QUIET)
+if(NOT TARGET meshoptimizer::meshoptimizer)
+  patchwork_missing("meshoptimizer" libmeshoptimizer-dev)
+endif()
+
+if(PATCHWORK_BUILD_TESTS)
+  find_package(GTest CONFIG QUIET)
+  if(NOT TARGET GTest::gtest_main)
+    patchwork_missing("GoogleTest" libgtest-dev)
+  endif()
+  find_package(rapidcheck CONFIG QUIET)
+  if(NOT TARGET rapidcheck)
+    patchwork_missing("RapidCheck" librapidcheck-dev)
+  endif()
+  # GMP's C++ rationals (mpq_class) are the exact reference of the numerical tests.
+  find_path(PATCHWORK_GMPXX_INCLUDE gmpxx.h)
+  find_library(PATCHWORK_GMPXX gmpxx)
+  find_library(PATCHWORK_GMP gmp)
+  if(NOT PATCHWORK_GMPXX_INCLUDE OR NOT PATCHWORK_GMPXX OR NOT PATCHWORK_GMP)
+    patchwork_missing("GMP with C++ bindings (gmpxx.h, libgmpxx)" libgmp-dev)
+  endif()
+  if(NOT TARGET patchwork_gmp)
+    add_library(patchwork_gmp INTERFACE IMPORTED GLOBAL)
+    set_target_properties(patchwork_gmp PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${PATCHWORK_GMPXX_INCLUDE}"
+                          INTERFACE_LINK_LIBRARIES "${PATCHWORK_GMPXX};${PATCHWORK_GMP}")
+  endif()
+endif()
+
+if(PATCHWORK_BUILD_BENCH)
+  find_package(benchmark CONFIG QUIET)
+  if(NOT TARGET benchmark::benchmark)
+    patchwork_missing("Google Benchmark" libbenchmark-dev)
+  endif()
+endif()

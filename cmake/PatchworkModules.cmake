@@ -1,0 +1,63 @@
+# Module declarations and one static library per module.
+#
+# patchwork_module(NAME DEPENDS ...) declares the module and the modules it may use; the graph
+# must be acyclic (a module can only depend on modules declared before it).
+# patchwork_add_library(NAME SOURCES ...) builds patchwork_NAME with alias patchwork::NAME and
+# links the declared dependencies that have a library.
+
+add_library(patchwork_warnings INTERFACE)
+target_compile_options(patchwork_warnings INTERFACE -Wall -Wextra -Wpedantic
+                       $<$<BOOL:${PATCHWORK_WERROR}>:-Werror>)
+
+add_library(patchwork_build_flags INTERFACE)
+target_compile_definitions(patchwork_build_flags INTERFACE
+                           $<$<OR:$<CONFIG:Debug>,$<BOOL:${PATCHWORK_SANITIZE}>>:PATCHWORK_ENABLE_ASSERTS>)
+if(PATCHWORK_SANITIZE)
+  target_compile_options(patchwork_build_flags INTERFACE -fsanitize=address,undefined
+                         -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  target_link_options(patchwork_build_flags INTERFACE -fsanitize=address,undefined)
+endif()
+
+set_property(GLOBAL PROPERTY PATCHWORK_MODULES "")
+
+function(patchwork_module name)
+  cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
+  get_property(modules GLOBAL PROPERTY PATCHWORK_MODULES)
+  foreach(dep IN LISTS ARG_DEPENDS)
+    if(NOT dep IN_LIST modules)
+      message(FATAL_ERROR "patchwork_module(${name}): '${dep}' must be declared before it")
+    endif()
+  endforeach()
+  set_property(GLOBAL APPEND PROPERTY PATCHWORK_MODULES ${name})
+  set_property(GLOBAL PROPERTY PATCHWORK_MODULE_DEPENDS_${name} "${ARG_DEPENDS}")
+endfunction()
+
+function(patchwork_write_module_graph path)
+  get_property(modules GLOBAL PROPERTY PATCHWORK_MODULES)
+  set(text "# module: the modules it depends on directly (generated from CMakeLists.txt)\n")
+  foreach(module IN LISTS modules)
+    get_property(deps GLOBAL PROPERTY PATCHWORK_MODULE_DEPENDS_${module})
+    string(REPLACE ";" " " deps "${deps}")
+    string(APPEND text "${module}: ${deps}\n")
+  endforeach()
+  file(WRITE "${path}" "${text}")
+endfunction()
+
+function(patchwork_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PRIVATE_LIBRARIES" ${ARGN})
+  get_property(declared GLOBAL PROPERTY PATCHWORK_MODULE_DEPENDS_${name} SET)
+  if(NOT declared)
+    message(FATAL_ERROR "patchwork_add_library(${name}): module not declared with patchwork_module")
+  endif()
+  get_property(deps GLOBAL PROPERTY PATCHWORK_MODULE_DEPENDS_${name})
+  add_library(patchwork_${name} STATIC ${ARG_SOURCES})
+  add_library(patchwork::${name} ALIAS patchwork_${name})
+  target_include_directories(patchwork_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>)
+  target_link_libraries(patchwork_${name} PUBLIC patchwork_build_flags PRIVATE patchwork_warnings
+                        ${ARG_PRIVATE_LIBRARIES})
+  foreach(dep IN LISTS deps)
+    if(TARGET patchwork_${dep})
+      target_link_libraries(patchwork_${name} PUBLIC patchwork::${dep})
+    endif()
+  endforeach()
+endfunction()
