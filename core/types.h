@@ -5,6 +5,7 @@
 // there is no vector class of our own. `Point<D>` is a column vector of D doubles.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products and boxes on the point types
 
 #include <cstdint>
 

@@ -1,0 +1,28 @@
+// The patchwork command-line tool. Each subcommand prints one line and exits 1 on bad input.
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "tools/curve_demo.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"patchwork: Bezier curves, patches and meshes"};
+  app.require_subcommand(1);
+
+  int degree = 20;
+  long evaluations = 2'000'000;
+  CLI::App* demo = app.add_subcommand("curve-demo", "Accuracy and speed of the curves module");
+  demo->add_option("--degree", degree, "Degree of the hard-case polynomial")->check(CLI::Range(2, 33));
+  demo->add_option("--evaluations", evaluations, "Evaluations timed per method")->check(CLI::Range(1000L, 1'000'000'000L));
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (demo->parsed()) patchwork::tools::run_curve_demo(std::cout, degree, evaluations);
+  } catch (const std::exception& error) {
+    std::cerr << "patchwork: " << error.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
