@@ -1,0 +1,89 @@
+#include "surfaces/patch_flatness.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.h"
+
+namespace patchwork {
+
+SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch) {
+  const int n = patch.degree_u();
+  const int m = patch.degree_v();
+  double uu = 0.0;
+  double uv = 0.0;
+  double vv = 0.0;
+  for (int j = 0; j <= m; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const Vec3& p = patch.control_point(i, j);
+      if (i + 2 <= n) uu = std::max(uu, (patch.control_point(i + 2, j) - 2.0 * patch.control_point(i + 1, j) + p).norm());
+      if (j + 2 <= m) vv = std::max(vv, (patch.control_point(i, j + 2) - 2.0 * patch.control_point(i, j + 1) + p).norm());
+      if (i + 1 <= n && j + 1 <= m) {
+        uv = std::max(uv, (patch.control_point(i + 1, j + 1) - patch.control_point(i + 1, j) -
+                           patch.control_point(i, j + 1) + p).norm());
+      }
+    }
+  }
+  return {n * (n - 1.0) * uu, static_cast<double>(n) * m * uv, m * (m - 1.0) * vv};
+}
+
+double flatness_bound(const SecondDerivativeBounds& M, double du, double dv) {
+  if (!(du > 0.0 && du <= 1.0 && dv > 0.0 && dv <= 1.0)) {
+    throw InvalidInput(detail::message("flatness_bound: steps (", du, ", ", dv, ") are not in (0, 1]"));
+  }
+  return (M.uu * du * du + 2.0 * M.uv * du * dv + M.vv * dv * dv) / 8.0;
+}
+
+GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance) {
+  if (!std::isfinite(tolerance) || !(tolerance > 0.0)) {
+    throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " is not positive and finite"));
+  }
+  constexpr std::int64_t limit = std::int64_t{1} << 20;
+  const double e = 8.0 * tolerance;
+  // For each N_u with M_uu du^2 < 8 eps, the smallest N_v solves
+  // M_vv dv^2 + 2 M_uv du dv - (8 eps - M_uu du^2) <= 0 for dv = 1/N_v.
+  const auto segments_v_for = [&](std::int64_t nu) -> std::int64_t {
+    const double du = 1.0 / static_cast<double>(nu);
+    const double room = e - M.uu * du * du;
+    if (room <= 0.0) return -1;
+    const double b = M.uv * du;
+    double dv;
+    if (M.vv > 0.0) {
+      dv = (-b + std::sqrt(b * b + M.vv * room)) / M.vv;
+    } else if (b > 0.0) {
+      dv = room / (2.0 * b);
+    } else {
+      return 1;
+    }
+    double nv = std::max(1.0, std::ceil(1.0 / dv));
+    if (nv > static_cast<double>(limit)) return -1;
+    auto count = static_cast<std::int64_t>(nv);
+    while (count > 1 && flatness_bound(M, du, 1.0 / static_cast<double>(count - 1)) <= tolerance) --count;
+    while (flatness_bound(M, du, 1.0 / static_cast<double>(count)) > tolerance) ++count;
+    return count;
+  };
+  const double smallest_u = M.uu > 0.0 ? std::sqrt(M.uu / e) : 1.0;
+  std::int64_t first = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(smallest_u)));
+  if (first > limit) {
+    throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " needs more than 2^20 segments in u"));
+  }
+  // N_v cannot drop below what M_vv alone needs; once it is there, larger N_u only costs.
+  const auto floor_v = static_cast<std::int64_t>(std::max(1.0, std::ceil(std::sqrt(M.vv / e) - 1e-9)));
+  GridSize best{-1, -1};
+  // The product N_u N_v is searched over N_u from its minimum up to where it cannot improve.
+  for (std::int64_t nu = first; nu <= limit; ++nu) {
+    const std::int64_t nv = segments_v_for(nu);
+    if (nv < 0) continue;
+    const bool better = best.segments_u < 0 || nu * nv < best.segments_u * best.segments_v ||
+                        (nu * nv == best.segments_u * best.segments_v &&
+                         std::abs(nu - nv) < std::abs(best.segments_u - best.segments_v));
+    if (better) best = {nu, nv};
+    if (nv <= floor_v || nu >= best.segments_u * best.segments_v) break;
+  }
+  if (best.segments_u < 0) {
+    throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " needs more than 2^20 segments"));
+  }
+  return best;
+}
+
+}  // namespace patchwork

@@ -1,0 +1,46 @@
+#pragma once
+// The a-priori flatness bound of Filip, Magedson & Markot (1986, "Surface algorithms using
+// bounds on derivatives", CAGD 3): on a uniform grid of parameter steps (du, dv), triangulated,
+// the distance between F and its piecewise-linear interpolant is at most
+//
+//   (1/8) (M_uu du^2 + 2 M_uv du dv + M_vv dv^2),
+//
+// with M_uu >= sup |F_uu|, M_uv >= sup |F_uv|, M_vv >= sup |F_vv| taken from the net's second
+// differences (convex hull property of the differenced nets):
+//   M_uu = n(n-1) max |P_{i+2,j} - 2 P_{i+1,j} + P_ij|
+//   M_uv = n m    max |P_{i+1,j+1} - P_{i+1,j} - P_{i,j+1} + P_ij|
+//   M_vv = m(m-1) max |P_{i,j+2} - 2 P_{i,j+1} + P_ij|
+// The bound is on the parametric distance |F(u,v) - L(u,v)| (L linear on each triangle), which
+// bounds both one-sided Hausdorff distances. The tessellator's guarantee rests on it.
+
+#include <cstdint>
+
+#include "surfaces/bezier_patch.h"
+
+namespace patchwork {
+
+/// The second-derivative bounds of a patch.
+struct SecondDerivativeBounds {
+  double uu;
+  double uv;
+  double vv;
+};
+
+/// M_uu, M_uv, M_vv of the patch (zero where a degree is too low).
+SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch);
+
+/// The bound for parameter steps du, dv. \throws InvalidInput unless both are in (0, 1].
+double flatness_bound(const SecondDerivativeBounds& bounds, double du, double dv);
+
+/// A grid of segments_u x segments_v cells.
+struct GridSize {
+  std::int64_t segments_u;
+  std::int64_t segments_v;
+};
+
+/// The grid with the fewest cells whose bound is <= tolerance (ties: the more even grid).
+/// \throws InvalidInput if the tolerance is not positive and finite, or a side would need more
+///         than 2^20 segments.
+GridSize grid_for_tolerance(const SecondDerivativeBounds& bounds, double tolerance);
+
+}  // namespace patchwork

@@ -1,0 +1,414 @@
+#include "surfaces/patch_set.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <ostream>
+#include <sstream>
+#include <unordered_map>
+
+#include "core/errors.h"
+#include "curves/continuity.h"
+#include "curves/degree.h"
+#include "surfaces/surface_normal.h"
+
+namespace patchwork {
+namespace {
+
+constexpr PatchEdge all_edges[4] = {PatchEdge::v0, PatchEdge::u1, PatchEdge::v1, PatchEdge::u0};
+
+// Whether the counter-clockwise walk runs along boundary_curve(edge) (v0, u1) or against it.
+bool walks_forward(PatchEdge edge) { return edge == PatchEdge::v0 || edge == PatchEdge::u1; }
+
+int degree_along(const BezierPatch3& patch, PatchEdge edge) {
+  return (edge == PatchEdge::v0 || edge == PatchEdge::v1) ? patch.degree_u() : patch.degree_v();
+}
+
+int degree_across(const BezierPatch3& patch, PatchEdge edge) {
+  return (edge == PatchEdge::v0 || edge == PatchEdge::v1) ? patch.degree_v() : patch.degree_u();
+}
+
+// The patch elevated along `edge` to `degree`.
+BezierPatch3 elevated_along(const BezierPatch3& patch, PatchEdge edge, int degree) {
+  const int times = degree - degree_along(patch, edge);
+  const bool along_u = edge == PatchEdge::v0 || edge == PatchEdge::v1;
+  return elevate_degree(patch, along_u ? times : 0, along_u ? 0 : times);
+}
+
+// (u, v) of the point at s in [0,1] along boundary_curve(edge).
+Vec2 edge_parameter(PatchEdge edge, double s) {
+  switch (edge) {
+    case PatchEdge::v0: return {s, 0.0};
+    case PatchEdge::u1: return {1.0, s};
+    case PatchEdge::v1: return {s, 1.0};
+    case PatchEdge::u0: return {0.0, s};
+  }
+  return {s, 0.0};
+}
+
+// Largest distance between corresponding points, b read backwards when reversed.
+double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool reversed) {
+  double result = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) result = std::max(result, (a[i] - b[reversed ? b.size() - 1 - i : i]).norm());
+  return result;
+}
+
+// Points hashed into cubic cells; queries return the ids within the 27 neighbouring cells.
+class PointGrid {
+ public:
+  explicit PointGrid(double cell) : cell_(cell > 0.0 ? cell : 1.0) {}
+  void insert(const Vec3& p, std::size_t id) { cells_[key(p, 0, 0, 0)].push_back(id); }
+  template <class Visit>
+  void near(const Vec3& p, Visit visit) const {
+    for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(key(p, dx, dy, dz));
+          if (it == cells_.end()) continue;
+          for (std::size_t id : it->second) visit(id);
+        }
+      }
+    }
+  }
+
+ private:
+  std::uint64_t key(const Vec3& p, int dx, int dy, int dz) const {
+    const auto c = [this](double x, int d) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x / cell_)) + d) & 0x1fffff; };
+    return c(p.x(), dx) | (c(p.y(), dy) << 21) | (c(p.z(), dz) << 42);
+  }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+};
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+}  // namespace
+
+const char* edge_name(PatchEdge edge) {
+  switch (edge) {
+    case PatchEdge::v0: return "v0";
+    case PatchEdge::u1: return "u1";
+    case PatchEdge::v1: return "v1";
+    case PatchEdge::u0: return "u0";
+  }
+  return "?";
+}
+
+EdgeContinuity edge_continuity(const BezierPatch3& first_patch, PatchEdge first_edge, const BezierPatch3& second_patch,
+                               PatchEdge second_edge, bool reversed, double relative_tolerance) {
+  const int along = std::max(degree_along(first_patch, first_edge), degree_along(second_patch, second_edge));
+  const BezierPatch3 first = elevated_along(first_patch, first_edge, along);
+  const BezierPatch3 second = elevated_along(second_patch, second_edge, along);
+  const int n1 = degree_across(first, first_edge);
+  const int n2 = degree_across(second, second_edge);
+  EdgeContinuity result{max_distance(row_from_edge(first, first_edge, 0), row_from_edge(second, second_edge, 0), reversed),
+                        std::max(n1, n2), false, 0.0};
+  // Column i across the edge: ending at the edge in `first`, starting there in `second`. The
+  // join is C^k across the edge exactly when every column pair joins C^k (Bemerkung 18 per column).
+  for (int i = 0; i <= along; ++i) {
+    std::vector<Vec3> column_first(static_cast<std::size_t>(n1) + 1);
+    std::vector<Vec3> column_second(static_cast<std::size_t>(n2) + 1);
+    for (int l = 0; l <= n1; ++l) column_first[static_cast<std::size_t>(n1 - l)] = row_from_edge(first, first_edge, l)[static_cast<std::size_t>(i)];
+    const int i2 = reversed ? along - i : i;
+    for (int l = 0; l <= n2; ++l) column_second[static_cast<std::size_t>(l)] = row_from_edge(second, second_edge, l)[static_cast<std::size_t>(i2)];
+    const Continuity c = continuity(BezierCurve3(column_first), BezierCurve3(column_second), std::max(n1, n2), relative_tolerance);
+    result.ck = std::min(result.ck, c.ck);
+  }
+  // G^1 from sampled normals; with the orientations opposite along the edge, normals agree.
+  const bool opposite_walks = walks_forward(first_edge) != (walks_forward(second_edge) != reversed);
+  const int samples = 4 * std::max(first.degree_u(), first.degree_v()) + 1;
+  for (int k = 0; k < samples; ++k) {
+    const double s = static_cast<double>(k) / (samples - 1);
+    const Vec2 p1 = edge_parameter(first_edge, s);
+    const Vec2 p2 = edge_parameter(second_edge, reversed ? 1.0 - s : s);
+    const Vec3 n1v = unit_normal(first, p1.x(), p1.y());
+    Vec3 n2v = unit_normal(second, p2.x(), p2.y());
+    if (!opposite_walks) n2v = -n2v;
+    result.max_normal_angle = std::max(result.max_normal_angle, std::atan2(n1v.cross(n2v).norm(), n1v.dot(n2v)));
+  }
+  result.g1 = result.ck >= 0 && result.max_normal_angle <= 1e-7;
+  return result;
+}
+
+std::vector<std::vector<Vec3>> continue_across(const BezierPatch3& patch, PatchEdge edge, int k, int degree_across_new) {
+  if (k < 0 || k > degree_across_new) {
+    throw InvalidInput(detail::message("continue_across: order k = ", k, " not in [0, ", degree_across_new, "]"));
+  }
+  const int along = degree_along(patch, edge);
+  const int across = degree_across(patch, edge);
+  std::vector<std::vector<Vec3>> rows(static_cast<std::size_t>(k) + 1, std::vector<Vec3>(static_cast<std::size_t>(along) + 1));
+  for (int i = 0; i <= along; ++i) {
+    std::vector<Vec3> column(static_cast<std::size_t>(across) + 1);
+    for (int l = 0; l <= across; ++l) column[static_cast<std::size_t>(across - l)] = row_from_edge(patch, edge, l)[static_cast<std::size_t>(i)];
+    const std::vector<Vec3> next = continue_ck(BezierCurve3(std::move(column)), k, degree_across_new, 1.0);
+    for (int j = 0; j <= k; ++j) rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = next[static_cast<std::size_t>(j)];
+  }
+  return rows;
+}
+
+PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance) : patches_(std::move(patches)) {
+  if (patches_.empty()) throw InvalidInput("PatchSet: no patches");
+  if (patches_.size() >= 0xffffffffu) throw InvalidInput(detail::message("PatchSet: ", patches_.size(), " patches (limit 2^32 - 1)"));
+  if (!std::isfinite(relative_tolerance) || relative_tolerance < 0.0) {
+    throw InvalidInput(detail::message("PatchSet: relative tolerance ", relative_tolerance, " is not >= 0"));
+  }
+  Eigen::AlignedBox3d box(patches_.front().control_points().front());
+  for (const auto& patch : patches_) {
+    for (const auto& p : patch.control_points()) box.extend(p);
+  }
+  size_ = box.diagonal().norm();
+  tolerance_ = relative_tolerance * size_;
+
+  // Every edge: collapsed, or a candidate for sharing.
+  std::vector<EdgeRef> edges;
+  std::vector<std::vector<Vec3>> points;
+  for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    for (PatchEdge e : all_edges) {
+      std::vector<Vec3> row = row_from_edge(patches_[p], e, 0);
+      const bool collapsed = std::all_of(row.begin(), row.end(), [&](const Vec3& q) { return (q - row.front()).norm() <= tolerance_; });
+      if (collapsed) {
+        collapsed_.push_back({p, e});
+        continue;
+      }
+      edges.push_back({p, e});
+      points.push_back(std::move(row));
+    }
+  }
+  PointGrid ends(std::max(2.0 * tolerance_, 1e-300));
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    ends.insert(points[k].front(), k);
+    ends.insert(points[k].back(), k);
+  }
+  std::vector<bool> matched(edges.size(), false);
+  for (std::size_t a = 0; a < edges.size(); ++a) {
+    std::vector<std::size_t> candidates;
+    ends.near(points[a].front(), [&](std::size_t b) {
+      if (b > a) candidates.push_back(b);
+    });
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    for (std::size_t b : candidates) {
+      std::vector<Vec3> pa = points[a];
+      std::vector<Vec3> pb = points[b];
+      if (pa.size() != pb.size()) {
+        const int degree = static_cast<int>(std::max(pa.size(), pb.size())) - 1;
+        pa = elevate_degree(BezierCurve3(pa), degree - static_cast<int>(pa.size()) + 1).control_points();
+        pb = elevate_degree(BezierCurve3(pb), degree - static_cast<int>(pb.size()) + 1).control_points();
+      }
+      for (bool reversed : {false, true}) {
+        if (max_distance(pa, pb, reversed) > tolerance_) continue;
+        const EdgeRef ea = edges[a];
+        const EdgeRef eb = edges[b];
+        SharedEdge shared{ea, eb, reversed, walks_forward(ea.edge) != (walks_forward(eb.edge) != reversed),
+                          edge_continuity(patches_[ea.patch], ea.edge, patches_[eb.patch], eb.edge, reversed)};
+        shared_.push_back(shared);
+        matched[a] = matched[b] = true;
+        break;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    if (!matched[k]) open_.push_back(edges[k]);
+  }
+
+  // Boundary loops: chain open edges head to tail in walking order.
+  const auto walk_start = [&](EdgeRef e) {
+    const auto row = row_from_edge(patches_[e.patch], e.edge, 0);
+    return walks_forward(e.edge) ? row.front() : row.back();
+  };
+  const auto walk_end = [&](EdgeRef e) {
+    const auto row = row_from_edge(patches_[e.patch], e.edge, 0);
+    return walks_forward(e.edge) ? row.back() : row.front();
+  };
+  PointGrid starts(std::max(2.0 * tolerance_, 1e-300));
+  for (std::size_t k = 0; k < open_.size(); ++k) starts.insert(walk_start(open_[k]), k);
+  std::vector<bool> used(open_.size(), false);
+  for (std::size_t first = 0; first < open_.size(); ++first) {
+    if (used[first]) continue;
+    BoundaryLoop loop{{open_[first]}, false};
+    used[first] = true;
+    const Vec3 origin = walk_start(open_[first]);
+    std::size_t current = first;
+    while (true) {
+      const Vec3 end = walk_end(open_[current]);
+      if ((end - origin).norm() <= tolerance_) {
+        loop.closed = true;
+        break;
+      }
+      std::optional<std::size_t> next;
+      starts.near(end, [&](std::size_t k) {
+        if (!next && !used[k] && (walk_start(open_[k]) - end).norm() <= tolerance_) next = k;
+      });
+      if (!next) break;
+      used[*next] = true;
+      loop.edges.push_back(open_[*next]);
+      current = *next;
+    }
+    loops_.push_back(std::move(loop));
+  }
+
+  // Touching points: corners grouped by position; patches there joined by shared edges that end
+  // at the point (or by a collapsed edge, which is the point itself).
+  struct Corner {
+    Vec3 point;
+    std::uint32_t patch;
+  };
+  std::vector<Corner> corners;
+  for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    const auto& patch = patches_[p];
+    const int n = patch.degree_u();
+    const int m = patch.degree_v();
+    for (const Vec3& q : {patch.control_point(0, 0), patch.control_point(n, 0), patch.control_point(n, m), patch.control_point(0, m)}) {
+      corners.push_back({q, p});
+    }
+  }
+  PointGrid corner_grid(std::max(2.0 * tolerance_, 1e-300));
+  for (std::size_t k = 0; k < corners.size(); ++k) corner_grid.insert(corners[k].point, k);
+  std::vector<bool> visited(corners.size(), false);
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    if (visited[k]) continue;
+    std::vector<std::uint32_t> here;
+    corner_grid.near(corners[k].point, [&](std::size_t c) {
+      if ((corners[c].point - corners[k].point).norm() <= tolerance_) {
+        visited[c] = true;
+        here.push_back(corners[c].patch);
+      }
+    });
+    std::sort(here.begin(), here.end());
+    here.erase(std::unique(here.begin(), here.end()), here.end());
+    if (here.size() < 2) continue;
+    const auto touches = [&](EdgeRef e) {
+      const auto row = row_from_edge(patches_[e.patch], e.edge, 0);
+      return (row.front() - corners[k].point).norm() <= tolerance_ || (row.back() - corners[k].point).norm() <= tolerance_;
+    };
+    const auto index_of = [&](std::uint32_t patch) {
+      return static_cast<std::size_t>(std::lower_bound(here.begin(), here.end(), patch) - here.begin());
+    };
+    UnionFind groups(here.size());
+    for (const SharedEdge& s : shared_) {
+      if (!std::binary_search(here.begin(), here.end(), s.first.patch) ||
+          !std::binary_search(here.begin(), here.end(), s.second.patch) || !touches(s.first)) {
+        continue;
+      }
+      groups.unite(index_of(s.first.patch), index_of(s.second.patch));
+    }
+    std::unordered_map<std::size_t, std::vector<std::uint32_t>> by_root;
+    for (std::size_t i = 0; i < here.size(); ++i) by_root[groups.find(i)].push_back(here[i]);
+    if (by_root.size() < 2) continue;
+    TouchingPoint point{corners[k].point, {}};
+    for (auto& [root, members] : by_root) point.groups.push_back(std::move(members));
+    std::sort(point.groups.begin(), point.groups.end());
+    touching_.push_back(std::move(point));
+  }
+}
+
+std::optional<EdgeRef> PatchSet::neighbour(EdgeRef edge) const {
+  for (const SharedEdge& s : shared_) {
+    if (s.first == edge) return s.second;
+    if (s.second == edge) return s.first;
+  }
+  return std::nullopt;
+}
+
+PatchSetReport report(const PatchSet& set) {
+  PatchSetReport r{set.patches().size(), set.shared_edges().size(), set.open_edges().size(),
+                   set.collapsed_edges().size(), set.boundary_loops().size(), set.touching_points().size(),
+                   true, set.open_edges().empty(), set.shared_edges().empty() ? -1 : 1 << 30, 0,
+                   set.tolerance(), &set};
+  for (const SharedEdge& s : set.shared_edges()) {
+    r.consistently_oriented = r.consistently_oriented && s.consistently_oriented;
+    r.min_ck = std::min(r.min_ck, s.continuity.ck);
+    if (s.continuity.g1) ++r.g1_edges;
+  }
+  return r;
+}
+
+namespace {
+
+std::string edge_label(EdgeRef e) { return detail::message("patch ", e.patch, " ", edge_name(e.edge)); }
+
+}  // namespace
+
+std::ostream& operator<<(std::ostream& out, const PatchSetReport& r) {
+  out << "patch set: " << r.patches << " patches, " << r.shared_edges << " shared edges, " << r.open_edges
+      << " open edges, " << r.collapsed_edges << " collapsed edges, " << r.boundary_loops << " boundary loops, "
+      << r.touching_points << " touching points\n"
+      << "  closed: " << (r.closed ? "yes" : "no") << ", consistently oriented: " << (r.consistently_oriented ? "yes" : "no")
+      << ", lowest C^k: " << r.min_ck << ", G^1 edges: " << r.g1_edges << " of " << r.shared_edges
+      << ", tolerance: " << r.tolerance << "\n";
+  for (const SharedEdge& s : r.set->shared_edges()) {
+    out << "  shared " << edge_label(s.first) << " ~ " << edge_label(s.second) << (s.reversed ? " (reversed)" : "")
+        << ": gap " << s.continuity.gap << ", C^" << s.continuity.ck << ", " << (s.continuity.g1 ? "G^1" : "not G^1")
+        << " (max normal angle " << s.continuity.max_normal_angle << " rad)" << (s.consistently_oriented ? "" : ", orientation flips") << "\n";
+  }
+  for (const EdgeRef& e : r.set->collapsed_edges()) out << "  collapsed " << edge_label(e) << "\n";
+  for (const BoundaryLoop& loop : r.set->boundary_loops()) {
+    out << "  boundary loop (" << (loop.closed ? "closed" : "open chain") << "):";
+    for (const EdgeRef& e : loop.edges) out << " [" << edge_label(e) << "]";
+    out << "\n";
+  }
+  for (const TouchingPoint& t : r.set->touching_points()) {
+    out << "  touching point (" << t.point.x() << ", " << t.point.y() << ", " << t.point.z() << "):";
+    for (const auto& group : t.groups) {
+      out << " {";
+      for (std::size_t i = 0; i < group.size(); ++i) out << (i ? " " : "") << group[i];
+      out << "}";
+    }
+    out << "\n";
+  }
+  return out;
+}
+
+std::string to_json(const PatchSetReport& r) {
+  using nlohmann::json;
+  const auto edge_json = [](EdgeRef e) { return json{{"patch", e.patch}, {"edge", edge_name(e.edge)}}; };
+  json shared = json::array();
+  for (const SharedEdge& s : r.set->shared_edges()) {
+    shared.push_back({{"first", edge_json(s.first)}, {"second", edge_json(s.second)}, {"reversed", s.reversed},
+                      {"consistently_oriented", s.consistently_oriented}, {"gap", s.continuity.gap},
+                      {"ck", s.continuity.ck}, {"g1", s.continuity.g1}, {"max_normal_angle", s.continuity.max_normal_angle}});
+  }
+  json open = json::array();
+  for (const EdgeRef& e : r.set->open_edges()) open.push_back(edge_json(e));
+  json collapsed = json::array();
+  for (const EdgeRef& e : r.set->collapsed_edges()) collapsed.push_back(edge_json(e));
+  json loops = json::array();
+  for (const BoundaryLoop& loop : r.set->boundary_loops()) {
+    json edges = json::array();
+    for (const EdgeRef& e : loop.edges) edges.push_back(edge_json(e));
+    loops.push_back({{"closed", loop.closed}, {"edges", edges}});
+  }
+  json touching = json::array();
+  for (const TouchingPoint& t : r.set->touching_points()) {
+    touching.push_back({{"point", {t.point.x(), t.point.y(), t.point.z()}}, {"groups", t.groups}});
+  }
+  const json document = {{"patches", r.patches},
+                         {"shared_edges", r.shared_edges},
+                         {"open_edges", r.open_edges},
+                         {"collapsed_edges", r.collapsed_edges},
+                         {"boundary_loops", r.boundary_loops},
+                         {"touching_points", r.touching_points},
+                         {"consistently_oriented", r.consistently_oriented},
+                         {"closed", r.closed},
+                         {"min_ck", r.min_ck},
+                         {"g1_edges", r.g1_edges},
+                         {"tolerance", r.tolerance},
+                         {"shared", shared},
+                         {"open", open},
+                         {"collapsed", collapsed},
+                         {"loops", loops},
+                         {"touching", touching}};
+  return document.dump(2);
+}
+
+}  // namespace patchwork

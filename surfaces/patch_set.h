@@ -1,0 +1,156 @@
+#pragma once
+// A set of Bezier patches and their adjacency, found from the geometry alone.
+//
+// Every patch has four boundary edges (PatchEdge); an edge is
+//   - collapsed when all its control points coincide (within the tolerance): the teapot's poles;
+//   - shared when another patch has an edge with the same control points, in the same or the
+//     reverse order (the lower degree elevated first when the degrees differ);
+//   - open otherwise: a boundary of the set.
+// The tolerance is relative to the diagonal of the box of all control points.
+//
+// Orientation. Walking a patch's boundary counter-clockwise in (u, v) traverses v0 with u
+// increasing, u1 with v increasing, v1 with u decreasing and u0 with v decreasing. Two patches
+// are consistently oriented along a shared edge when they walk it in opposite directions.
+// Open edges chain into boundary loops in that walking direction. A touching point is a point
+// where patches meet at corners without a chain of shared edges around it (the teapot's handle
+// touches its body at one point).
+
+#include <cstdint>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "surfaces/bezier_patch.h"
+
+namespace patchwork {
+
+/// One edge of one patch.
+struct EdgeRef {
+  std::uint32_t patch;
+  PatchEdge edge;
+  friend bool operator==(const EdgeRef&, const EdgeRef&) = default;
+};
+
+/// How two patches join along a shared edge.
+struct EdgeContinuity {
+  /// Largest distance between corresponding control points of the two boundary curves.
+  double gap;
+  /// The highest k <= the degrees across the edge for which the join is C^k (cross-boundary
+  /// derivatives of orders 0..k agree, each patch in its own parameters on [0,1]^2); -1 if the
+  /// control points of the edge differ by more than the tolerance.
+  int ck;
+  /// The normals agree along the edge (to 1e-7 rad) at 4 max(n, m) + 1 sample points.
+  bool g1;
+  /// The largest angle between the two unit normals at the samples, radians.
+  double max_normal_angle;
+};
+
+/// Two patch edges with the same control points.
+struct SharedEdge {
+  EdgeRef first;
+  EdgeRef second;
+  /// The second edge's boundary curve runs opposite to the first's.
+  bool reversed;
+  /// The two patches walk the edge in opposite directions (consistent orientation).
+  bool consistently_oriented;
+  EdgeContinuity continuity;
+};
+
+/// A closed chain of open edges, in walking order.
+struct BoundaryLoop {
+  std::vector<EdgeRef> edges;
+  /// The chain returns to its start (false: it ends at an open end, a non-manifold corner or
+  /// an orientation flip).
+  bool closed;
+};
+
+/// A point where patches meet without being connected by shared edges around it.
+struct TouchingPoint {
+  Vec3 point;
+  /// The patches at the point, grouped by edge-connectedness around it (at least two groups).
+  std::vector<std::vector<std::uint32_t>> groups;
+};
+
+class PatchSet {
+ public:
+  /// Analyses the adjacency of `patches` with tolerance relative_tolerance * (box diagonal).
+  /// \throws InvalidInput if there is no patch, more than 2^32 - 1, or the tolerance is
+  ///         negative or not finite.
+  explicit PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance = 1e-9);
+
+  /// The patches, in the order given.
+  const std::vector<BezierPatch3>& patches() const noexcept { return patches_; }
+  /// The absolute tolerance used for comparisons.
+  double tolerance() const noexcept { return tolerance_; }
+  /// Diagonal of the box of all control points.
+  double size() const noexcept { return size_; }
+
+  /// Pairs of coinciding edges.
+  const std::vector<SharedEdge>& shared_edges() const noexcept { return shared_; }
+  /// Edges that collapse to a point.
+  const std::vector<EdgeRef>& collapsed_edges() const noexcept { return collapsed_; }
+  /// Edges that no other patch shares: the boundary of the set.
+  const std::vector<EdgeRef>& open_edges() const noexcept { return open_; }
+  /// Open edges chained into loops.
+  const std::vector<BoundaryLoop>& boundary_loops() const noexcept { return loops_; }
+  /// Points where patches touch without sharing edges around the point.
+  const std::vector<TouchingPoint>& touching_points() const noexcept { return touching_; }
+  /// The edge shared with `edge`, if any.
+  std::optional<EdgeRef> neighbour(EdgeRef edge) const;
+
+ private:
+  std::vector<BezierPatch3> patches_;
+  double size_;
+  double tolerance_;
+  std::vector<SharedEdge> shared_;
+  std::vector<EdgeRef> collapsed_;
+  std::vector<EdgeRef> open_;
+  std::vector<BoundaryLoop> loops_;
+  std::vector<TouchingPoint> touching_;
+};
+
+/// The first k+1 rows R_0 (the edge itself) .. R_k of a neighbour patch of degree
+/// `degree_across` across `edge` that joins `patch` with C^k there. The neighbour is
+/// parametrised with u along boundary_curve(patch, edge) and v leaving `patch`, its rows
+/// indexed by v (row j = its control points P_0j .. P_nj): rows k+1 .. degree_across are free.
+/// Each column is continued with the curve rule of Bemerkung 18 (continue_ck).
+/// \throws InvalidInput if k < 0 or k > degree_across.
+std::vector<std::vector<Vec3>> continue_across(const BezierPatch3& patch, PatchEdge edge, int k, int degree_across);
+
+/// Continuity of two patches along edges that coincide (first's edge, second's edge, reversed
+/// as in SharedEdge), judged with `relative_tolerance` of the control-point scale.
+EdgeContinuity edge_continuity(const BezierPatch3& first, PatchEdge first_edge, const BezierPatch3& second,
+                               PatchEdge second_edge, bool reversed, double relative_tolerance = 1e-9);
+
+/// Everything a PatchSet knows, in one value that prints as text and as JSON.
+struct PatchSetReport {
+  std::size_t patches;
+  std::size_t shared_edges;
+  std::size_t open_edges;
+  std::size_t collapsed_edges;
+  std::size_t boundary_loops;
+  std::size_t touching_points;
+  /// Every shared edge walked in opposite directions by its two patches.
+  bool consistently_oriented;
+  /// No open edge.
+  bool closed;
+  /// Lowest C^k over the shared edges (-1 if there is a gap; -1 also if there is no shared edge).
+  int min_ck;
+  /// Number of shared edges that are G^1.
+  std::size_t g1_edges;
+  double tolerance;
+  const PatchSet* set;
+};
+
+/// The report of a patch set (keeps a pointer to `set` for the per-element listing).
+PatchSetReport report(const PatchSet& set);
+/// Human-readable report with every shared, open and collapsed edge, loop and touching point.
+std::ostream& operator<<(std::ostream& out, const PatchSetReport& report);
+/// The report as JSON (keys as in PatchSetReport, plus arrays of the elements).
+std::string to_json(const PatchSetReport& report);
+
+/// Readable edge name: "v0", "u1", "v1", "u0".
+const char* edge_name(PatchEdge edge);
+
+}  // namespace patchwork

@@ -1,0 +1,51 @@
+#pragma once
+// Rational tensor-product Bezier patches: control points P_ij with positive weights w_ij,
+//
+//   F(u, v) = sum_ij w_ij P_ij B_i^n(u) B_j^m(v) / sum_ij w_ij B_i^n(u) B_j^m(v),
+//
+// stored as the polynomial patch of homogeneous points (w P, w) (BezierPatch4), same index
+// order as BezierPatch (P_ij at i + (n+1) j). Derivatives follow from H = w F by Leibniz's rule:
+//   d^(a,b) F = (d^(a,b) H - sum_{(k,l) != (0,0)} C(a,k) C(b,l) d^(k,l) w d^(a-k,b-l) F) / w.
+// Quadrics are exact: sphere_octant gives the unit sphere's octant to rounding.
+
+#include <vector>
+
+#include "surfaces/bezier_patch.h"
+
+namespace patchwork {
+
+class RationalBezierPatch {
+ public:
+  /// Patch of degrees (n, m) with control points and weights (same index order).
+  /// \throws InvalidInput if counts differ, a value is not finite or a weight is not positive.
+  RationalBezierPatch(int n, int m, const std::vector<Vec3>& control_points, const std::vector<double>& weights);
+  /// From homogeneous control points (w P, w). \throws InvalidInput if a weight is not positive.
+  explicit RationalBezierPatch(BezierPatch4 homogeneous);
+
+  int degree_u() const noexcept { return homogeneous_.degree_u(); }
+  int degree_v() const noexcept { return homogeneous_.degree_v(); }
+  /// The homogeneous patch (w P, w).
+  const BezierPatch4& homogeneous() const noexcept { return homogeneous_; }
+  /// P_ij (homogeneous point divided by its weight).
+  Vec3 control_point(int i, int j) const;
+  /// w_ij.
+  double weight(int i, int j) const { return homogeneous_.control_point(i, j)[3]; }
+
+  /// F(u, v). \throws InvalidInput if u or v is not finite.
+  Vec3 evaluate(double u, double v) const;
+  Vec3 operator()(double u, double v) const { return evaluate(u, v); }
+
+ private:
+  BezierPatch4 homogeneous_;
+};
+
+/// All partial derivatives of F with a + b <= order at (u, v).
+PartialDerivatives<3> partial_derivatives(const RationalBezierPatch& patch, double u, double v, int order);
+
+/// The unit sphere's octant x, y, z >= 0 (scaled by radius, moved to center) as a degree (2,2)
+/// rational patch: the quarter circle (1,0,0) -> (0,0,1) in the xz-plane, weights (1, 1/sqrt2, 1),
+/// revolved through 90 degrees about z with the same weights. The row j = 2 collapses to the
+/// pole (0, 0, radius); the normal F_u x F_v points outward.
+RationalBezierPatch sphere_octant(const Vec3& center, double radius);
+
+}  // namespace patchwork

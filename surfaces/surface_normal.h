@@ -1,0 +1,38 @@
+#pragma once
+// Normals of Bezier patches (seed Def 32): n = F_u x F_v, and a unit normal that is defined
+// everywhere, also where F_u x F_v vanishes.
+//
+// Where it vanishes (a collapsed edge such as the teapot's lid top, a collapsed corner), the
+// unit normal is the limit of n / |n| approaching (u, v) from inside the square along the
+// direction d towards its centre (1/2, 1/2): with N(s) = n(u + s d_u, v + s d_v),
+//   N^(k)(0) = sum_j C(k,j) D^j F_u x D^(k-j) F_v,   D = d_u d/du + d_v d/dv,
+// and the first N^(k) that does not vanish gives the direction (s > 0, so its sign is kept).
+// At a collapsed edge this limit is the same for every inward direction; at a true cone point
+// it depends on d, and the one towards the centre is returned.
+
+#include "core/types.h"
+#include "surfaces/bezier_patch.h"
+#include "surfaces/rational_bezier_patch.h"
+
+namespace patchwork {
+
+/// F_u x F_v at (u, v), not normalised (zero where the parametrisation degenerates).
+Vec3 normal(const BezierPatch3& patch, double u, double v);
+/// F_u x F_v of a rational patch.
+Vec3 normal(const RationalBezierPatch& patch, double u, double v);
+
+/// The unit normal at (u, v), the limit normal where F_u x F_v vanishes.
+/// \throws NumericalError only for a patch that is degenerate everywhere near (u, v) (a point or
+///         a curve), which has no normal.
+Vec3 unit_normal(const BezierPatch3& patch, double u, double v);
+/// The unit normal of a rational patch (limit normal at collapsed edges, e.g. a sphere's pole).
+Vec3 unit_normal(const RationalBezierPatch& patch, double u, double v);
+
+namespace detail {
+
+/// The limit unit normal from a derivative table of order >= 1 (see the file comment); `scale`
+/// is the patch's size (vanishing is judged relative to it), n and m its degrees.
+Vec3 limit_unit_normal(const PartialDerivatives<3>& derivatives, double u, double v, double scale, int n, int m);
+
+}  // namespace detail
+}  // namespace patchwork
