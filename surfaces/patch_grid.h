@@ -1,0 +1,66 @@
+#pragma once
+// Evaluation of a patch on a whole (u, v) grid with precomputed Bernstein weights: the fast
+// path of the tessellator. The weights of B_i^n(u), B_i^n'(u) (and likewise in v) are
+// tabulated once per grid and degree and reused for every patch of those degrees. Per grid row
+// v_k the net is first contracted in v (Q_i = sum_j B_j^m(v_k) P_ij and Q'_i with B_j^m'),
+// then every point costs three sums over i:
+//   F = sum_i B_i^n(u) Q_i,   F_u = sum_i B_i^n'(u) Q_i,   F_v = sum_i B_i^n(u) Q'_i.
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "curves/bernstein.h"
+#include "surfaces/bezier_patch.h"
+
+namespace patchwork {
+
+/// Bernstein values and first derivatives of degrees (n, m) at grid parameters us x vs.
+class PatchGridWeights {
+ public:
+  /// \throws InvalidInput if a degree is negative, a list is empty, or a parameter not finite.
+  PatchGridWeights(int n, int m, std::span<const double> us, std::span<const double> vs);
+  /// A uniform grid of (segments_u + 1) x (segments_v + 1) parameters on [0,1]^2.
+  static PatchGridWeights uniform(int n, int m, std::size_t segments_u, std::size_t segments_v);
+
+  int degree_u() const noexcept { return n_; }
+  int degree_v() const noexcept { return m_; }
+  std::span<const double> us() const noexcept { return us_; }
+  std::span<const double> vs() const noexcept { return vs_; }
+  /// B_i^n(us[k]) for i = 0..n.
+  std::span<const double> u_values(std::size_t k) const noexcept { return row(u_values_, n_, k); }
+  /// d/du B_i^n(us[k]) for i = 0..n.
+  std::span<const double> u_derivatives(std::size_t k) const noexcept { return row(u_derivatives_, n_, k); }
+  /// B_j^m(vs[k]) for j = 0..m.
+  std::span<const double> v_values(std::size_t k) const noexcept { return row(v_values_, m_, k); }
+  /// d/dv B_j^m(vs[k]) for j = 0..m.
+  std::span<const double> v_derivatives(std::size_t k) const noexcept { return row(v_derivatives_, m_, k); }
+
+ private:
+  static std::span<const double> row(const std::vector<double>& table, int degree, std::size_t k) noexcept {
+    const std::size_t width = static_cast<std::size_t>(degree) + 1;
+    return {table.data() + k * width, width};
+  }
+  int n_;
+  int m_;
+  std::vector<double> us_;
+  std::vector<double> vs_;
+  std::vector<double> u_values_;
+  std::vector<double> u_derivatives_;
+  std::vector<double> v_values_;
+  std::vector<double> v_derivatives_;
+};
+
+/// Points and unit normals on a grid, stored row by row: sample (a, b) at a + us.size() * b.
+struct PatchGridSamples {
+  std::size_t count_u;
+  std::size_t count_v;
+  std::vector<Vec3> points;
+  std::vector<Vec3> normals;
+};
+
+/// F and the unit normal at every grid point (the limit normal where F_u x F_v vanishes).
+/// \throws InvalidInput if the weights' degrees differ from the patch's.
+PatchGridSamples evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights);
+
+}  // namespace patchwork
