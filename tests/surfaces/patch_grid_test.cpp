@@ -1,0 +1,70 @@
+#include "surfaces/patch_grid.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include "core/errors.h"
+#include "surfaces/surface_normal.h"
+#include "tests/surfaces/patch_fixtures.h"
+
+namespace patchwork {
+namespace {
+
+RC_GTEST_PROP(PatchGrid, MatchesPointwiseEvaluation, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 5);
+  const auto segments_u = static_cast<std::size_t>(*rc::gen::inRange(1, 9));
+  const auto segments_v = static_cast<std::size_t>(*rc::gen::inRange(1, 9));
+  const PatchGridWeights weights = PatchGridWeights::uniform(patch.degree_u(), patch.degree_v(), segments_u, segments_v);
+  // A patch without a normal somewhere (a point or a curve: small generated sizes make those)
+  // is rejected by unit_normal and by evaluate_grid alike.
+  bool degenerate = false;
+  for (double u : weights.us()) {
+    for (double v : weights.vs()) {
+      try {
+        unit_normal(patch, u, v);
+      } catch (const NumericalError&) {
+        degenerate = true;
+      }
+    }
+  }
+  if (degenerate) {
+    RC_ASSERT_THROWS_AS(evaluate_grid(patch, weights), NumericalError);
+    return;
+  }
+  const PatchGridSamples samples = evaluate_grid(patch, weights);
+  RC_ASSERT(samples.points.size() == (segments_u + 1) * (segments_v + 1));
+  for (std::size_t b = 0; b <= segments_v; ++b) {
+    for (std::size_t a = 0; a <= segments_u; ++a) {
+      const double u = weights.us()[a];
+      const double v = weights.vs()[b];
+      const std::size_t k = a + samples.count_u * b;
+      // Two ways of summing the same convex combinations: a few roundings of the net's size.
+      RC_ASSERT((samples.points[k] - patch.evaluate(u, v)).norm() <= 1e-13 * testing::net_scale(patch));
+      const Vec3 n = normal(patch, u, v);
+      if (n.norm() > 1e-6) {
+        const double conditioning = derivative(patch, u, v, 1, 0).norm() * derivative(patch, u, v, 0, 1).norm() / n.norm();
+        RC_ASSERT((samples.normals[k] - unit_normal(patch, u, v)).norm() <= 1e-12 * conditioning);
+      }
+    }
+  }
+}
+
+TEST(PatchGrid, CollapsedEdgeGetsTheLimitNormal) {
+  // The octant-like cap: row j = 0 collapsed to the origin on the paraboloid z = x^2 + y^2.
+  const BezierPatch3 patch = testing::product_patch({Vec3(1, 0, 1), Vec3(0.5, 0.5, 0), Vec3(0, 1, 1)},
+                                                    {Vec3(0, 0, 0), Vec3(0.5, 0.5, 0), Vec3(1, 1, 1)});
+  const PatchGridSamples samples = evaluate_grid(patch, PatchGridWeights::uniform(2, 2, 4, 4));
+  for (std::size_t a = 0; a < samples.count_u; ++a) {
+    EXPECT_LT((samples.normals[a] - Vec3(0, 0, -1)).norm(), 1e-12);
+    EXPECT_LT(samples.points[a].norm(), 1e-15);
+  }
+}
+
+TEST(PatchGrid, RejectsMismatchedDegrees) {
+  const BezierPatch3 patch = testing::bilinear(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0));
+  EXPECT_THROW(evaluate_grid(patch, PatchGridWeights::uniform(3, 3, 2, 2)), InvalidInput);
+  EXPECT_THROW(PatchGridWeights::uniform(1, 1, 0, 2), InvalidInput);
+}
+
+}  // namespace
+}  // namespace patchwork

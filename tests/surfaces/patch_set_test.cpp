@@ -1,0 +1,190 @@
+#include "surfaces/patch_set.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <algorithm>
+#include <random>
+#include <sstream>
+
+#include "core/errors.h"
+#include "tests/surfaces/patch_fixtures.h"
+
+namespace patchwork {
+namespace {
+
+using testing::bilinear;
+using testing::coordinate;
+
+// A rows x cols grid of unit bilinear squares in the plane z = 0, all with normal +z.
+std::vector<BezierPatch3> square_grid(int rows, int cols) {
+  std::vector<BezierPatch3> patches;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      patches.push_back(bilinear(Vec3(c, r, 0), Vec3(c + 1, r, 0), Vec3(c, r + 1, 0), Vec3(c + 1, r + 1, 0)));
+    }
+  }
+  return patches;
+}
+
+// The unit cube as six outward bilinear faces (see surface_integrals_test.cpp).
+std::vector<BezierPatch3> unit_cube() {
+  const auto face = [](Vec3 origin, Vec3 a, Vec3 b) { return bilinear(origin, origin + a, origin + b, origin + a + b); };
+  const Vec3 x = Vec3::UnitX(), y = Vec3::UnitY(), z = Vec3::UnitZ(), o = Vec3::Zero();
+  return {face(o, y, x), face(z, x, y), face(o, x, z), face(y, z, x), face(o, z, y), face(x, y, z)};
+}
+
+// The same surface with u reversed (P_ij -> P_{n-i,j}): the orientation flips.
+BezierPatch3 reversed_u(const BezierPatch3& patch) {
+  std::vector<Vec3> points;
+  for (int j = 0; j <= patch.degree_v(); ++j) {
+    for (int i = patch.degree_u(); i >= 0; --i) points.push_back(patch.control_point(i, j));
+  }
+  return BezierPatch3(patch.degree_u(), patch.degree_v(), points);
+}
+
+TEST(PatchSet, GridOfSquares) {
+  const PatchSet set(square_grid(2, 3));
+  // Interior edges of a 2 x 3 grid: 2 * 2 vertical + 1 * 3 horizontal = 7; boundary 2 * (2 + 3) = 10.
+  EXPECT_EQ(set.shared_edges().size(), 7u);
+  EXPECT_EQ(set.open_edges().size(), 10u);
+  EXPECT_TRUE(set.collapsed_edges().empty());
+  ASSERT_EQ(set.boundary_loops().size(), 1u);
+  EXPECT_TRUE(set.boundary_loops()[0].closed);
+  EXPECT_EQ(set.boundary_loops()[0].edges.size(), 10u);
+  EXPECT_TRUE(set.touching_points().empty());
+  const PatchSetReport r = report(set);
+  EXPECT_TRUE(r.consistently_oriented);
+  EXPECT_FALSE(r.closed);
+  // Bilinear squares of one plane: the parametrisations continue C^1 (same spacing), G^1 everywhere.
+  EXPECT_EQ(r.min_ck, 1);
+  EXPECT_EQ(r.g1_edges, 7u);
+}
+
+TEST(PatchSet, CubeIsClosedAndOriented) {
+  const PatchSet set(unit_cube());
+  EXPECT_EQ(set.shared_edges().size(), 12u);
+  EXPECT_TRUE(set.open_edges().empty());
+  EXPECT_TRUE(set.boundary_loops().empty());
+  const PatchSetReport r = report(set);
+  EXPECT_TRUE(r.closed);
+  EXPECT_TRUE(r.consistently_oriented);
+  EXPECT_EQ(r.g1_edges, 0u);  // cube edges are creases of 90 degrees
+  for (const SharedEdge& e : set.shared_edges()) EXPECT_NEAR(e.continuity.max_normal_angle, std::acos(0.0), 1e-12);
+  // Flipping one face breaks the orientation of its four edges only.
+  std::vector<BezierPatch3> flipped = unit_cube();
+  flipped[2] = reversed_u(flipped[2]);
+  const PatchSet broken(flipped);
+  EXPECT_EQ(broken.shared_edges().size(), 12u);
+  EXPECT_EQ(std::count_if(broken.shared_edges().begin(), broken.shared_edges().end(),
+                          [](const SharedEdge& e) { return !e.consistently_oriented; }), 4);
+  EXPECT_FALSE(report(broken).consistently_oriented);
+}
+
+TEST(PatchSet, SplitPatchJoinsWithFullContinuity) {
+  // The two halves of one bicubic patch agree in every derivative across the split: C^3.
+  std::vector<Vec3> points;
+  for (int j = 0; j <= 3; ++j) {
+    for (int i = 0; i <= 3; ++i) points.emplace_back(i, j, std::sin(1.0 + i * j) + 0.1 * i * i);
+  }
+  const BezierPatch3 patch(3, 3, points);
+  const auto [left, right] = split_u(patch, 0.5);
+  const PatchSet set({left, right});
+  ASSERT_EQ(set.shared_edges().size(), 1u);
+  const SharedEdge& e = set.shared_edges()[0];
+  EXPECT_EQ(e.continuity.ck, 3);
+  EXPECT_TRUE(e.continuity.g1);
+  EXPECT_LT(e.continuity.max_normal_angle, 1e-12);
+  EXPECT_EQ(e.continuity.gap, 0.0);
+}
+
+TEST(PatchSet, ContinueAcrossBuildsCkJoins) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<Vec3> points;
+  for (int k = 0; k < 16; ++k) points.emplace_back(k % 4 + 0.2 * value(random), k / 4 + 0.2 * value(random), value(random));
+  const BezierPatch3 patch(3, 3, points);
+  for (PatchEdge edge : {PatchEdge::v0, PatchEdge::u1, PatchEdge::v1, PatchEdge::u0}) {
+    for (int k = 0; k <= 2; ++k) {
+      const auto rows = continue_across(patch, edge, k, 3);
+      std::vector<Vec3> net;
+      for (int j = 0; j <= 3; ++j) {
+        for (int i = 0; i <= 3; ++i) net.push_back(j <= k ? rows[j][i] : Vec3(value(random), value(random), 3.0 + j + value(random)));
+      }
+      // The neighbour has its v0 edge on `edge`, u along boundary_curve(patch, edge).
+      const EdgeContinuity c = edge_continuity(patch, edge, BezierPatch3(3, 3, net), PatchEdge::v0, false);
+      EXPECT_EQ(c.gap, 0.0);
+      EXPECT_EQ(c.ck, k) << edge_name(edge) << " k=" << k;  // generic free rows: not C^(k+1)
+      if (k >= 1) {
+        EXPECT_LT(c.max_normal_angle, 1e-9);
+      }
+    }
+  }
+  EXPECT_THROW(continue_across(patch, PatchEdge::v0, 4, 3), InvalidInput);
+}
+
+TEST(PatchSet, CollapsedEdgesAndTouchingPoints) {
+  // A triangle-like patch with edge v0 collapsed, and two squares meeting only at a corner.
+  const BezierPatch3 cap = bilinear(Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(-1, 1, 0), Vec3(1, 1, 0));
+  const BezierPatch3 a = bilinear(Vec3(5, 5, 0), Vec3(6, 5, 0), Vec3(5, 6, 0), Vec3(6, 6, 0));
+  const BezierPatch3 b = bilinear(Vec3(6, 6, 0), Vec3(7, 6, 0), Vec3(6, 7, 0), Vec3(7, 7, 0));
+  const PatchSet set({cap, a, b});
+  ASSERT_EQ(set.collapsed_edges().size(), 1u);
+  EXPECT_EQ(set.collapsed_edges()[0], (EdgeRef{0, PatchEdge::v0}));
+  ASSERT_EQ(set.touching_points().size(), 1u);
+  EXPECT_EQ(set.touching_points()[0].point, Vec3(6, 6, 0));
+  EXPECT_EQ(set.touching_points()[0].groups, (std::vector<std::vector<std::uint32_t>>{{1}, {2}}));
+  EXPECT_EQ(set.open_edges().size(), 11u);
+  EXPECT_EQ(set.boundary_loops().size(), 3u);
+}
+
+TEST(PatchSet, ToleranceDecidesNearMisses) {
+  std::vector<BezierPatch3> patches = square_grid(1, 2);
+  std::vector<Vec3> moved = patches[1].control_points();
+  for (Vec3& p : moved) p.z() += 1e-12;  // far below the default 1e-9 * diagonal
+  const PatchSet close({patches[0], BezierPatch3(1, 1, moved)});
+  ASSERT_EQ(close.shared_edges().size(), 1u);
+  EXPECT_NEAR(close.shared_edges()[0].continuity.gap, 1e-12, 1e-15);
+  for (Vec3& p : moved) p.z() += 1e-6;
+  const PatchSet apart({patches[0], BezierPatch3(1, 1, moved)});
+  EXPECT_TRUE(apart.shared_edges().empty());
+  EXPECT_EQ(apart.open_edges().size(), 8u);
+  EXPECT_THROW(PatchSet({}), InvalidInput);
+  EXPECT_THROW(PatchSet(patches, -1.0), InvalidInput);
+}
+
+RC_GTEST_PROP(PatchSet, AdjacencyIgnoresOrderDirectionAndRigidMotion, ()) {
+  std::vector<BezierPatch3> patches = unit_cube();
+  const Eigen::Isometry3d motion = *testing::random_rigid_motion();
+  for (BezierPatch3& p : patches) p = testing::transformed(p, Eigen::Affine3d(motion));
+  const auto order = *rc::gen::container<std::vector<bool>>(6, rc::gen::arbitrary<bool>());
+  for (std::size_t k = 0; k < 6; ++k) {
+    if (order[k]) patches[k] = reversed_u(patches[k]);
+  }
+  std::mt19937 random(*rc::gen::inRange(0, 1000));
+  std::shuffle(patches.begin(), patches.end(), random);
+  const PatchSet set(patches);
+  RC_ASSERT(set.shared_edges().size() == 12u);
+  RC_ASSERT(set.open_edges().empty());
+  const bool all_same = std::all_of(order.begin(), order.end(), [&](bool b) { return b == order[0]; });
+  RC_ASSERT(report(set).consistently_oriented == all_same);
+}
+
+TEST(PatchSetReport, PrintsTextAndJson) {
+  const PatchSet set(square_grid(1, 2));
+  std::ostringstream text;
+  text << report(set);
+  EXPECT_NE(text.str().find("2 patches, 1 shared edges, 6 open edges"), std::string::npos) << text.str();
+  const nlohmann::json json = nlohmann::json::parse(to_json(report(set)));
+  EXPECT_EQ(json["patches"], 2);
+  EXPECT_EQ(json["shared_edges"], 1);
+  EXPECT_EQ(json["open_edges"], 6);
+  EXPECT_EQ(json["boundary_loops"], 1);
+  EXPECT_EQ(json["closed"], false);
+  EXPECT_EQ(json["shared"][0]["ck"], 1);
+  EXPECT_EQ(json["loops"][0]["edges"].size(), 6u);
+}
+
+}  // namespace
+}  // namespace patchwork

@@ -1,0 +1,76 @@
+#include "surfaces/surface_normal.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include "core/errors.h"
+#include "tests/surfaces/patch_fixtures.h"
+
+namespace patchwork {
+namespace {
+
+using testing::coordinate;
+
+// F(u, v) = (v(1-u), v u, v^2 (1 - 2u + 2u^2)): the paraboloid z = x^2 + y^2 over a triangle,
+// with the edge v = 0 collapsed to the origin. In Bernstein form (degree 2 each way):
+// 1-u -> (1, 1/2, 0), u -> (0, 1/2, 1), 1 - 2u + 2u^2 -> (1, 0, 1), v -> (0, 1/2, 1), v^2 -> (0, 0, 1).
+// Near v = 0, F_u x F_v = v (-1, 1, 0) x (1-u, u, 0) + O(v^2) = v (0, 0, -1): the limit is -z.
+BezierPatch3 collapsed_paraboloid() {
+  return testing::product_patch({Vec3(1, 0, 1), Vec3(0.5, 0.5, 0), Vec3(0, 1, 1)},
+                                {Vec3(0, 0, 0), Vec3(0.5, 0.5, 0), Vec3(1, 1, 1)});
+}
+
+TEST(SurfaceNormal, PlaneHasConstantNormal) {
+  const BezierPatch3 square = testing::bilinear(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 3, 0), Vec3(2, 3, 0));
+  // de Casteljau on equal values may round in the last bit: 1e-14.
+  EXPECT_LT((normal(square, 0.3, 0.6) - Vec3(0, 0, 6)).norm(), 1e-14);
+  EXPECT_LT((unit_normal(square, 0.3, 0.6) - Vec3(0, 0, 1)).norm(), 1e-15);
+}
+
+TEST(SurfaceNormal, CollapsedEdgeGivesTheLimitNormal) {
+  const BezierPatch3 patch = collapsed_paraboloid();
+  for (double u : {0.0, 0.2, 0.5, 0.8, 1.0}) {
+    EXPECT_EQ(normal(patch, u, 0.0).norm(), 0.0);
+    const Vec3 n = unit_normal(patch, u, 0.0);
+    EXPECT_TRUE(n.allFinite());
+    EXPECT_LT((n - Vec3(0, 0, -1)).norm(), 1e-12) << "u=" << u;
+    // Continuity: the ordinary normal just inside tends to the limit (O(v) away from it).
+    EXPECT_LT((unit_normal(patch, u, 1e-7) - n).norm(), 1e-6);
+  }
+}
+
+TEST(SurfaceNormal, DegeneratePatchThrows) {
+  const BezierPatch3 point(1, 1, std::vector<Vec3>(4, Vec3(1, 2, 3)));
+  EXPECT_THROW(unit_normal(point, 0.5, 0.5), NumericalError);
+  const BezierPatch3 segment = testing::bilinear(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0));
+  EXPECT_THROW(unit_normal(segment, 0.5, 0.5), NumericalError);
+}
+
+RC_GTEST_PROP(SurfaceNormal, OrthogonalToBothTangents, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 4);
+  const double u = *coordinate(0, 1);
+  const double v = *coordinate(0, 1);
+  const Vec3 du = derivative(patch, u, v, 1, 0);
+  const Vec3 dv = derivative(patch, u, v, 0, 1);
+  const Vec3 n = normal(patch, u, v);
+  RC_PRE(n.norm() > 1e-6 * du.norm() * dv.norm());
+  const Vec3 unit = unit_normal(patch, u, v);
+  RC_ASSERT(std::abs(unit.norm() - 1.0) <= 4e-16);
+  RC_ASSERT(std::abs(unit.dot(du)) <= 1e-13 * du.norm() * (du.norm() * dv.norm() / n.norm()));
+  RC_ASSERT(std::abs(unit.dot(dv)) <= 1e-13 * dv.norm() * (du.norm() * dv.norm() / n.norm()));
+  RC_ASSERT(unit.dot(n) > 0.0);
+}
+
+RC_GTEST_PROP(SurfaceNormal, RotatesWithTheSurface, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 3);
+  const Eigen::Isometry3d motion = *testing::random_rigid_motion();
+  const double u = *coordinate(0, 1);
+  const double v = *coordinate(0, 1);
+  const Vec3 n = normal(patch, u, v);
+  RC_PRE(n.norm() > 1e-3);
+  const Vec3 moved = unit_normal(testing::transformed(patch, Eigen::Affine3d(motion)), u, v);
+  RC_ASSERT((moved - motion.linear() * unit_normal(patch, u, v)).norm() <= 1e-9);
+}
+
+}  // namespace
+}  // namespace patchwork
