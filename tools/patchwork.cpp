@@ -4,8 +4,10 @@
 
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "tools/curve_demo.h"
+#include "tools/patches_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"patchwork: Bezier curves, patches and meshes"};
@@ -17,9 +19,16 @@ int main(int argc, char** argv) {
   demo->add_option("--degree", degree, "Degree of the hard-case polynomial")->check(CLI::Range(2, 33));
   demo->add_option("--evaluations", evaluations, "Evaluations timed per method")->check(CLI::Range(1000L, 1'000'000'000L));
 
+  std::string patch_file;
+  bool json = false;
+  CLI::App* patches = app.add_subcommand("patches", "Adjacency, continuity and area of a BPT patch set");
+  patches->add_option("file", patch_file, "BPT file (e.g. data/teapot.bpt)")->required();
+  patches->add_flag("--json", json, "Print the report as JSON");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (demo->parsed()) patchwork::tools::run_curve_demo(std::cout, degree, evaluations);
+    if (patches->parsed()) patchwork::tools::run_patches_report(std::cout, patch_file, json);
   } catch (const std::exception& error) {
     std::cerr << "patchwork: " << error.what() << "\n";
     return 1;
