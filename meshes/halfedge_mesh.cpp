@@ -1,0 +1,229 @@
+#include "meshes/halfedge_mesh.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "core/errors.h"
+
+namespace patchwork {
+namespace {
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+// The corners (face, position in face) that use each undirected edge, for error messages.
+struct EdgeUse {
+  std::uint32_t from;
+  std::uint32_t to;
+  std::uint32_t face;
+};
+
+}  // namespace
+
+HalfedgeMesh::HalfedgeMesh(const FaceVertexMesh& mesh) : positions_(mesh.positions()) {
+  const std::size_t faces = mesh.face_count();
+  const auto vertices = static_cast<std::uint32_t>(mesh.vertex_count());
+  if (mesh.face_indices().size() >= 0x7fffffffu) {
+    throw TopologyError(detail::message("HalfedgeMesh: ", mesh.face_indices().size(), " corners exceed 32-bit half-edge ids"));
+  }
+  // 1. Faces that repeat a vertex.
+  for (std::size_t f = 0; f < faces; ++f) {
+    std::vector<std::uint32_t> corners(mesh.face(f).begin(), mesh.face(f).end());
+    std::sort(corners.begin(), corners.end());
+    const auto repeated = std::adjacent_find(corners.begin(), corners.end());
+    if (repeated != corners.end()) {
+      throw TopologyError(detail::message("HalfedgeMesh: face ", f, " uses vertex ", *repeated, " more than once"));
+    }
+  }
+  // 2. Edges: each undirected edge may be used at most twice, once in each direction.
+  std::unordered_map<std::uint64_t, std::uint32_t> edge_of;
+  edge_of.reserve(mesh.face_indices().size());
+  std::vector<std::vector<EdgeUse>> uses;
+  std::vector<std::uint32_t> corner_halfedge(mesh.face_indices().size());
+  std::size_t corner = 0;
+  for (std::size_t f = 0; f < faces; ++f) {
+    const auto face = mesh.face(f);
+    for (std::size_t k = 0; k < face.size(); ++k, ++corner) {
+      const std::uint32_t a = face[k];
+      const std::uint32_t b = face[(k + 1) % face.size()];
+      const auto [it, inserted] = edge_of.try_emplace(edge_key(a, b), static_cast<std::uint32_t>(uses.size()));
+      if (inserted) uses.emplace_back();
+      uses[it->second].push_back({a, b, static_cast<std::uint32_t>(f)});
+    }
+  }
+  for (const auto& use : uses) {
+    if (use.size() > 2) {
+      std::string list;
+      for (const EdgeUse& u : use) list += (list.empty() ? "" : ", ") + std::to_string(u.face);
+      throw TopologyError(detail::message("HalfedgeMesh: edge (", use[0].from, ",", use[0].to, ") used by ", use.size(),
+                                          " faces (", list, ")"));
+    }
+    if (use.size() == 2 && use[0].from == use[1].from) {
+      throw TopologyError(detail::message("HalfedgeMesh: faces ", use[0].face, " and ", use[1].face, " both traverse edge (",
+                                          use[0].from, ",", use[0].to, ") from ", use[0].from,
+                                          ": inconsistent orientation (or a non-orientable surface)"));
+    }
+  }
+  // 3. Half-edges: 2e in the direction of the edge's first use, 2e+1 the other way.
+  const std::size_t edges = uses.size();
+  origin_.resize(2 * edges);
+  next_.assign(2 * edges, HalfedgeId());
+  prev_.assign(2 * edges, HalfedgeId());
+  face_.assign(2 * edges, FaceId());
+  for (std::size_t e = 0; e < edges; ++e) {
+    origin_[2 * e] = VertexId(uses[e][0].from);
+    origin_[2 * e + 1] = VertexId(uses[e][0].to);
+  }
+  face_halfedge_.resize(faces);
+  corner = 0;
+  for (std::size_t f = 0; f < faces; ++f) {
+    const auto face = mesh.face(f);
+    const std::size_t first = corner;
+    for (std::size_t k = 0; k < face.size(); ++k, ++corner) {
+      const std::uint32_t a = face[k];
+      const std::uint32_t b = face[(k + 1) % face.size()];
+      const std::uint32_t e = edge_of.at(edge_key(a, b));
+      const std::uint32_t h = 2 * e + (origin_[2 * e].value == a ? 0u : 1u);
+      corner_halfedge[corner] = h;
+      face_[h] = FaceId(static_cast<std::uint32_t>(f));
+    }
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      const std::uint32_t h = corner_halfedge[first + k];
+      const std::uint32_t n = corner_halfedge[first + (k + 1) % face.size()];
+      next_[h] = HalfedgeId(n);
+      prev_[n] = HalfedgeId(h);
+    }
+    face_halfedge_[f] = HalfedgeId(corner_halfedge[first]);
+  }
+  // 4. Boundary half-edges: each boundary vertex has exactly one outgoing boundary half-edge on
+  // a manifold; the one arriving at v continues with it.
+  vertex_halfedge_.assign(vertices, HalfedgeId());
+  std::vector<std::uint32_t> outgoing_count(vertices, 0);
+  for (std::uint32_t h = 0; h < origin_.size(); ++h) {
+    const VertexId v = origin_[h];
+    ++outgoing_count[v.index()];
+    if (!face_[h].valid()) {
+      if (vertex_halfedge_[v.index()].valid() && !face_[vertex_halfedge_[v.index()].index()].valid()) {
+        throw TopologyError(detail::message("HalfedgeMesh: vertex ", v.value,
+                                            " is on the boundary more than once (its faces form several fans)"));
+      }
+      vertex_halfedge_[v.index()] = HalfedgeId(h);
+    } else if (!vertex_halfedge_[v.index()].valid()) {
+      vertex_halfedge_[v.index()] = HalfedgeId(h);
+    }
+  }
+  for (std::uint32_t h = 0; h < origin_.size(); ++h) {
+    if (face_[h].valid()) continue;
+    const HalfedgeId following = vertex_halfedge_[origin_[h ^ 1u].index()];  // leaves destination(h)
+    next_[h] = following;
+    prev_[following.index()] = HalfedgeId(h);
+  }
+  // 5. Every vertex's half-edges must form one fan: one rotation visits all of them.
+  for (std::uint32_t v = 0; v < vertices; ++v) {
+    const HalfedgeId start = vertex_halfedge_[v];
+    if (!start.valid()) continue;
+    std::uint32_t visited = 0;
+    HalfedgeId h = start;
+    do {
+      ++visited;
+      h = twin(prev(h));
+    } while (h != start && visited <= outgoing_count[v]);
+    if (visited != outgoing_count[v]) {
+      throw TopologyError(detail::message("HalfedgeMesh: the faces around vertex ", v,
+                                          " form several fans (a non-manifold vertex)"));
+    }
+  }
+}
+
+std::size_t HalfedgeMesh::face_size(FaceId f) const {
+  std::size_t size = 0;
+  HalfedgeId h = halfedge(f);
+  do {
+    ++size;
+    h = next(h);
+  } while (h != halfedge(f));
+  return size;
+}
+
+std::vector<VertexId> HalfedgeMesh::face_vertices(FaceId f) const {
+  std::vector<VertexId> result;
+  HalfedgeId h = halfedge(f);
+  do {
+    result.push_back(origin(h));
+    h = next(h);
+  } while (h != halfedge(f));
+  return result;
+}
+
+std::vector<VertexId> HalfedgeMesh::vertex_neighbours(VertexId v) const {
+  std::vector<VertexId> result;
+  const HalfedgeId start = halfedge(v);
+  if (!start.valid()) return result;
+  HalfedgeId h = start;
+  do {
+    result.push_back(destination(h));
+    h = twin(prev(h));
+  } while (h != start);
+  return result;
+}
+
+void HalfedgeMesh::validate() const {
+  const auto fail = [](const std::string& what) { throw std::logic_error("HalfedgeMesh::validate: " + what); };
+  const std::size_t H = halfedge_count();
+  if (H % 2 != 0 || next_.size() != H || prev_.size() != H || face_.size() != H) fail("array sizes differ");
+  for (std::uint32_t i = 0; i < H; ++i) {
+    const HalfedgeId h(i);
+    if (twin(twin(h)) != h) fail(detail::message("twin(twin(", h, ")) != ", h));
+    if (!next(h).valid() || !prev(h).valid()) fail(detail::message(h, " has no next or prev"));
+    if (next(prev(h)) != h || prev(next(h)) != h) fail(detail::message("next/prev of ", h, " disagree"));
+    if (origin(next(h)) != destination(h)) fail(detail::message("next(", h, ") does not start where ", h, " ends"));
+    if (origin(twin(h)) == origin(h)) fail(detail::message(h, " and its twin share their origin"));
+    if (face(next(h)) != face(h)) fail(detail::message(h, " and next(", h, ") lie in different faces"));
+    if (origin(h).index() >= vertex_count()) fail(detail::message("origin of ", h, " out of range"));
+    if (is_boundary(h) && is_boundary(twin(h))) fail(detail::message("edge ", edge(h), " has no face"));
+  }
+  for (std::uint32_t i = 0; i < face_count(); ++i) {
+    const FaceId f(i);
+    if (face(halfedge(f)) != f) fail(detail::message("halfedge(", f, ") is not in ", f));
+    std::size_t steps = 0;
+    HalfedgeId h = halfedge(f);
+    do {
+      h = next(h);
+      if (++steps > H) fail(detail::message("the cycle of ", f, " does not close"));
+    } while (h != halfedge(f));
+  }
+  std::vector<std::uint32_t> outgoing(vertex_count(), 0);
+  for (std::uint32_t i = 0; i < H; ++i) ++outgoing[origin(HalfedgeId(i)).index()];
+  for (std::uint32_t i = 0; i < vertex_count(); ++i) {
+    const VertexId v(i);
+    if (is_isolated(v)) {
+      if (outgoing[i] != 0) fail(detail::message(v, " has half-edges but none is recorded"));
+      continue;
+    }
+    if (origin(halfedge(v)) != v) fail(detail::message("halfedge(", v, ") does not leave ", v));
+    std::uint32_t visited = 0;
+    HalfedgeId h = halfedge(v);
+    do {
+      if (is_boundary(h) && h != halfedge(v)) fail(detail::message(v, " has a second outgoing boundary half-edge"));
+      h = twin(prev(h));
+      if (++visited > outgoing[i]) break;
+    } while (h != halfedge(v));
+    if (visited != outgoing[i]) fail(detail::message("the fan of ", v, " is not one cycle"));
+  }
+}
+
+FaceVertexMesh to_face_vertex_mesh(const HalfedgeMesh& mesh) {
+  std::vector<std::uint32_t> sizes;
+  std::vector<std::uint32_t> indices;
+  sizes.reserve(mesh.face_count());
+  for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
+    const std::vector<VertexId> corners = mesh.face_vertices(FaceId(f));
+    sizes.push_back(static_cast<std::uint32_t>(corners.size()));
+    for (VertexId v : corners) indices.push_back(v.value);
+  }
+  return FaceVertexMesh(mesh.positions(), std::move(sizes), std::move(indices));
+}
+
+}  // namespace patchwork
