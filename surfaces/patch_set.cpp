@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "core/errors.h"
+#include "core/union_find.h"
 #include "curves/continuity.h"
 #include "curves/degree.h"
 #include "surfaces/surface_normal.h"
@@ -82,15 +83,6 @@ class PointGrid {
   std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
 };
 
-struct UnionFind {
-  std::vector<std::size_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
-};
 
 }  // namespace
 
@@ -300,10 +292,10 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
           !std::binary_search(here.begin(), here.end(), s.second.patch) || !touches(s.first)) {
         continue;
       }
-      groups.unite(index_of(s.first.patch), index_of(s.second.patch));
+      groups.unite(static_cast<std::uint32_t>(index_of(s.first.patch)), static_cast<std::uint32_t>(index_of(s.second.patch)));
     }
     std::unordered_map<std::size_t, std::vector<std::uint32_t>> by_root;
-    for (std::size_t i = 0; i < here.size(); ++i) by_root[groups.find(i)].push_back(here[i]);
+    for (std::uint32_t i = 0; i < here.size(); ++i) by_root[groups.find(i)].push_back(here[i]);
     if (by_root.size() < 2) continue;
     TouchingPoint point{corners[k].point, {}};
     for (auto& [root, members] : by_root) point.groups.push_back(std::move(members));

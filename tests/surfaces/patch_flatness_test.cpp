@@ -11,31 +11,6 @@ namespace {
 
 using testing::coordinate;
 
-// max |F(u,v) - L(u,v)| over the triangulated grid (each cell split along its diagonal from
-// (u_a, v_b) to (u_a+1, v_b+1)), sampled at `samples` x `samples` barycentric points per triangle.
-double measured_distance(const BezierPatch3& patch, int nu, int nv, int samples) {
-  double result = 0.0;
-  for (int b = 0; b < nv; ++b) {
-    for (int a = 0; a < nu; ++a) {
-      const double u0 = static_cast<double>(a) / nu, u1 = static_cast<double>(a + 1) / nu;
-      const double v0 = static_cast<double>(b) / nv, v1 = static_cast<double>(b + 1) / nv;
-      const Vec3 p00 = patch.evaluate(u0, v0), p10 = patch.evaluate(u1, v0);
-      const Vec3 p01 = patch.evaluate(u0, v1), p11 = patch.evaluate(u1, v1);
-      for (int s = 0; s <= samples; ++s) {
-        for (int t = 0; s + t <= samples; ++t) {
-          const double x = static_cast<double>(s) / samples, y = static_cast<double>(t) / samples;
-          // Lower triangle (p00, p10, p11): (u, v) = (u0 + (x + y) du, v0 + y dv).
-          const Vec3 lower = (1 - x - y) * p00 + x * p10 + y * p11;
-          result = std::max(result, (patch.evaluate(u0 + (x + y) * (u1 - u0), v0 + y * (v1 - v0)) - lower).norm());
-          // Upper triangle (p00, p11, p01): (u, v) = (u0 + x du, v0 + (x + y) dv).
-          const Vec3 upper = (1 - x - y) * p00 + x * p11 + y * p01;
-          result = std::max(result, (patch.evaluate(u0 + x * (u1 - u0), v0 + (x + y) * (v1 - v0)) - upper).norm());
-        }
-      }
-    }
-  }
-  return result;
-}
 
 TEST(PatchFlatness, HyperbolicParaboloidAttainsTheBound) {
   // F = (u, v, uv): M_uu = M_vv = 0, M_uv = 1, bound (1/8) 2 h^2 = h^2 / 4, and on a cell's
@@ -48,7 +23,7 @@ TEST(PatchFlatness, HyperbolicParaboloidAttainsTheBound) {
   for (int n : {1, 2, 5}) {
     const double h = 1.0 / n;
     EXPECT_DOUBLE_EQ(flatness_bound(M, h, h), h * h / 4.0);
-    EXPECT_NEAR(measured_distance(patch, n, n, 8), h * h / 4.0, 1e-15);
+    EXPECT_NEAR(testing::measured_distance(patch, n, n, 8), h * h / 4.0, 1e-15);
   }
 }
 
@@ -60,7 +35,7 @@ TEST(PatchFlatness, SecondDifferencesOfAParabolicCylinder) {
   EXPECT_EQ(M.uv, 0.0);
   EXPECT_EQ(M.vv, 0.0);
   // A parabola deviates from its chord by exactly h^2 |z''| / 8 = h^2 / 4 at the midpoint.
-  EXPECT_NEAR(measured_distance(patch, 4, 1, 16), flatness_bound(M, 0.25, 1.0), 1e-15);
+  EXPECT_NEAR(testing::measured_distance(patch, 4, 1, 16), flatness_bound(M, 0.25, 1.0), 1e-15);
 }
 
 RC_GTEST_PROP(PatchFlatness, MeasuredDistanceNeverExceedsTheBound, ()) {
@@ -68,7 +43,7 @@ RC_GTEST_PROP(PatchFlatness, MeasuredDistanceNeverExceedsTheBound, ()) {
   const int nu = *rc::gen::inRange(1, 6);
   const int nv = *rc::gen::inRange(1, 6);
   const double bound = flatness_bound(second_derivative_bounds(patch), 1.0 / nu, 1.0 / nv);
-  RC_ASSERT(measured_distance(patch, nu, nv, 4) <= bound * (1.0 + 1e-12) + 1e-12);
+  RC_ASSERT(testing::measured_distance(patch, nu, nv, 4) <= bound * (1.0 + 1e-12) + 1e-12);
 }
 
 RC_GTEST_PROP(PatchFlatness, GridForToleranceIsTheSmallestThatMeetsTheBound, ()) {
