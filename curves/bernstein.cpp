@@ -69,6 +69,16 @@ void split_coefficients(std::span<const double> c, double s, std::vector<double>
   }
 }
 
+// Coefficients of c restricted to [x1, x2], 0 <= x1 < x2 <= 1: split at x2, then at x1 / x2.
+std::vector<double> coefficients_between(std::span<const double> c, double x1, double x2) {
+  std::vector<double> up_to_x2;
+  std::vector<double> unused;
+  split_coefficients(c, x2, up_to_x2, unused);
+  std::vector<double> between;
+  split_coefficients(up_to_x2, x1 / x2, unused, between);
+  return between;
+}
+
 int sign_changes(const std::vector<double>& c) {
   int changes = 0;
   int last = 0;
@@ -81,17 +91,20 @@ int sign_changes(const std::vector<double>& c) {
   return changes;
 }
 
-// The single root of p in [lo, hi] where p(lo) and p(hi) have opposite signs: Newton steps kept
-// inside a shrinking bracket, bisection where Newton leaves it.
-double refine_root(std::span<const double> p, std::span<const double> dp, double lo, double hi) {
-  double f_lo = de_casteljau(p, lo);
+// The single root of p in [lo, hi], whose coefficients there (`local`) have one sign change and
+// nonzero ends: Newton steps kept inside a shrinking bracket, bisection where Newton leaves it.
+// The bracket's end signs are those of local.front() = p(lo) and local.back() = p(hi), the ones
+// that showed the sign change: evaluating p at an end anew can give the other sign where p is at
+// the rounding level there (a root at a subdivision point), and would then lose the bracket.
+double refine_root(std::span<const double> p, std::span<const double> dp, const std::vector<double>& local,
+                   double lo, double hi) {
+  const bool negative_at_lo = local.front() < 0.0;
   double x = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 200; ++iteration) {
     const double f = de_casteljau(p, x);
     if (f == 0.0) return x;
-    if ((f < 0.0) == (f_lo < 0.0)) {
+    if ((f < 0.0) == negative_at_lo) {
       lo = x;
-      f_lo = f;
     } else {
       hi = x;
     }
@@ -104,6 +117,10 @@ double refine_root(std::span<const double> p, std::span<const double> dp, double
   return x;
 }
 
+bool numerically_zero(const std::vector<double>& local, double noise) {
+  return std::all_of(local.begin(), local.end(), [noise](double c) { return std::abs(c) <= noise; });
+}
+
 // Recursive isolation. `noise` is the rounding level of p's values (4 n u max|c_i|): a piece
 // whose coefficients are all below it is numerically zero (the neighbourhood of a multiple
 // root) and is reported once, at its midpoint, instead of being subdivided without end.
@@ -111,20 +128,21 @@ void isolate_roots(std::span<const double> p, std::span<const double> dp,
                    const std::vector<double>& local, double lo, double hi, int depth,
                    double noise, std::vector<double>& roots) {
   const int changes = sign_changes(local);
+  const bool ends_nonzero = local.front() != 0.0 && local.back() != 0.0;
   if (changes == 0) {
-    // No sign change: a root can only be where a coefficient sequence touches zero at an end.
+    // No sign change: a root can only be where a coefficient sequence touches zero at an end,
+    // or, inside a piece reached by subdividing a sign change, where p is numerically zero (an
+    // even-order multiple root, whose computed coefficients may all share one sign).
     if (local.front() == 0.0) roots.push_back(lo);
     if (local.back() == 0.0) roots.push_back(hi);
+    if (ends_nonzero && numerically_zero(local, noise)) roots.push_back(0.5 * (lo + hi));
     return;
   }
-  const bool ends_nonzero = local.front() != 0.0 && local.back() != 0.0;
   if (changes == 1 && ends_nonzero) {
-    roots.push_back(refine_root(p, dp, lo, hi));
+    roots.push_back(refine_root(p, dp, local, lo, hi));
     return;
   }
-  const bool numerically_zero =
-      std::all_of(local.begin(), local.end(), [noise](double c) { return std::abs(c) <= noise; });
-  if (numerically_zero || depth >= 60 || hi - lo < 1e-11) {
+  if (numerically_zero(local, noise) || depth >= 60 || hi - lo < 1e-11) {
     roots.push_back(0.5 * (lo + hi));  // a cluster or multiple root
     return;
   }
@@ -264,10 +282,19 @@ std::vector<double> bernstein_roots(std::span<const double> coefficients) {
                        std::numeric_limits<double>::epsilon() * 0.5 * magnitude;
   isolate_roots(coefficients, derivative, local, 0.0, 1.0, 0, noise, roots);
   std::sort(roots.begin(), roots.end());
-  // Merge duplicates (a root at a split point is found by both halves) and clusters.
+  // Merge duplicates (a root at a split point is found by both halves) and clusters: neighbours
+  // closer than 1e-10 keep the first; neighbours between which p is numerically zero (one
+  // multiple root seen as several by rounding) become one root at the cluster's middle.
   std::vector<double> merged;
-  for (double root : roots) {
-    if (merged.empty() || root - merged.back() > 1e-10) merged.push_back(root);
+  std::size_t first = 0;
+  for (std::size_t last = 0; last < roots.size(); ++last) {
+    const bool cluster_ends =
+        last + 1 == roots.size() ||
+        (roots[last + 1] - roots[last] > 1e-10 &&
+         !numerically_zero(coefficients_between(coefficients, roots[last], roots[last + 1]), noise));
+    if (!cluster_ends) continue;
+    merged.push_back(roots[last] - roots[first] <= 1e-10 ? roots[first] : 0.5 * (roots[first] + roots[last]));
+    first = last + 1;
   }
   return merged;
 }

@@ -71,8 +71,11 @@ std::vector<double> bernstein_product(std::span<const double> f, std::span<const
 
 /// Real roots of p in [0, 1], ascending. Isolates by subdivision (a Bernstein coefficient
 /// sequence with one sign change has exactly one root) then refines with safeguarded Newton to
-/// full precision. A cluster of roots narrower than 1e-10 (e.g. a multiple root) is returned
-/// once; the zero polynomial has no isolated roots and returns none.
+/// full precision. Roots closer than 1e-10 are returned once (the first). A multiple root, or a
+/// cluster of roots that rounding cannot separate (p numerically zero between them:
+/// |p| <= 4 (n+1) u max|c_i| there), is returned once, at the middle of that cluster; how far
+/// that lies from the exact root grows with the multiplicity m, like (rounding level)^(1/m).
+/// The zero polynomial has no isolated roots and returns none.
 std::vector<double> bernstein_roots(std::span<const double> coefficients);
 
 }  // namespace patchwork

@@ -75,9 +75,10 @@ CompensatedPoint<Dim> evaluate_compensated(const BezierCurve<Dim>& curve, double
     work = large.data();
   }
   // Theorem bound u|p| + 2 gamma_{3n+2}^2 p~, made computable: |p| <= |res| + err gives the
-  // factor 1/(1-u); p~ computed in floating point is at least (1 - gamma_{2n+1}) p~.
+  // factor 1/(1-u); p~ computed in floating point (n levels, each with the rounded 1 - s, a
+  // product and a sum of non-negative terms) is at least (1 - u)^(3n) p~ >= (1 - gamma_{3n}) p~.
   const double gamma = gamma_constant(3 * n + 2);
-  const double magnitude_factor = 1.0 / (1.0 - gamma_constant(2 * n + 1));
+  const double magnitude_factor = 1.0 / (1.0 - gamma_constant(3 * n));
   CompensatedPoint<Dim> result;
   const double* base = curve.control_points().front().data();
   for (int c = 0; c < Dim; ++c) {

@@ -11,7 +11,8 @@
 //
 // with u = 2^-53 and gamma_k = k u / (1 - k u): as accurate as plain de Casteljau computed in
 // twice the working precision, then rounded. Plain de Casteljau satisfies
-// |res - p(s)| <= gamma_{2n} p~(s) and stays the fast default.
+// |res - p(s)| <= gamma_{3n} p~(s) (per level: 1 - s rounded, a product, a sum; gamma_{2n} when
+// 1 - s is exact, e.g. for s in [1/2, 1] by Sterbenz's lemma) and stays the fast default.
 
 #include "curves/bezier_curve.h"
 
