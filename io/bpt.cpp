@@ -10,8 +10,26 @@
 namespace patchwork {
 namespace {
 
+// A token as it may appear in a message: at most 32 bytes, anything but printable ASCII as \xNN
+// (a NUL byte from a binary file would otherwise cut what() short).
+std::string quoted(std::string_view token) {
+  constexpr std::size_t max_shown = 32;
+  static constexpr char hex[] = "0123456789abcdef";
+  std::string result = "'";
+  for (std::size_t k = 0; k < std::min(token.size(), max_shown); ++k) {
+    const auto c = static_cast<unsigned char>(token[k]);
+    if (c >= 0x20 && c < 0x7f) {
+      result += static_cast<char>(c);
+    } else {
+      result.append("\\x").append(1, hex[c >> 4]).append(1, hex[c & 0xf]);
+    }
+  }
+  if (token.size() > max_shown) result += "...";
+  return result + "'";
+}
+
 // Reads a text line by line and splits lines into whitespace-separated tokens, remembering
-// where each token stands for error messages.
+// where each token stands for error messages (line and column 1-based, columns in bytes).
 class LineReader {
  public:
   LineReader(std::string_view text, const std::string& name) : text_(text), name_(name) {}
@@ -19,9 +37,12 @@ class LineReader {
   struct Token {
     std::string_view text;
     std::int64_t column;
+    /// The column just after the token.
+    std::int64_t end_column() const noexcept { return column + static_cast<std::int64_t>(text.size()); }
   };
 
-  /// The tokens of the next non-blank line, or an empty list at the end of the text.
+  /// The tokens of the next non-blank line, or an empty list at the end of the text (then
+  /// line() and end_column() point just after the last token of the text).
   std::vector<Token> next_line() {
     while (position_ < text_.size()) {
       const std::size_t end = std::min(text_.find('\n', position_), text_.size());
@@ -36,15 +57,23 @@ class LineReader {
         while (k < line.size() && !is_space(line[k])) ++k;
         if (k > start) tokens.push_back({line.substr(start, k - start), static_cast<std::int64_t>(start) + 1});
       }
-      if (!tokens.empty()) return tokens;
+      if (!tokens.empty()) {
+        last_token_line_ = line_;
+        last_token_end_ = tokens.back().end_column();
+        return tokens;
+      }
     }
     return {};
   }
 
+  /// Fails at `column` of the current line.
   [[noreturn]] void fail(std::int64_t column, const std::string& message) const {
     throw ParseError(name_, line_, column, message);
   }
-  std::int64_t line() const noexcept { return line_; }
+  /// Fails at the end of the data: just after the last token (1:1 for a blank text).
+  [[noreturn]] void fail_at_end(const std::string& message) const {
+    throw ParseError(name_, last_token_line_, last_token_end_, message);
+  }
 
  private:
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
@@ -52,15 +81,19 @@ class LineReader {
   std::string name_;
   std::size_t position_ = 0;
   std::int64_t line_ = 0;
+  std::int64_t last_token_line_ = 1;
+  std::int64_t last_token_end_ = 1;
 };
 
-// The tokens of a line that must hold exactly `count` values.
+// The tokens of a line that must hold exactly `count` values. A missing value is reported just
+// after the last token of the line, a surplus one at its own column.
 std::vector<LineReader::Token> expect_line(LineReader& reader, std::size_t count, const std::string& what) {
   std::vector<LineReader::Token> tokens = reader.next_line();
-  if (tokens.empty()) reader.fail(0, "unexpected end of file: expected " + what);
+  if (tokens.empty()) reader.fail_at_end("unexpected end of file: expected " + what);
   if (tokens.size() != count) {
-    reader.fail(tokens.size() > count ? tokens[count].column : tokens.back().column,
-                detail::message("expected ", what, " (", count, " numbers), found ", tokens.size()));
+    reader.fail(tokens.size() > count ? tokens[count].column : tokens.back().end_column(),
+                detail::message("expected ", what, " (", count, count == 1 ? " number" : " numbers", "), found ",
+                                tokens.size()));
   }
   return tokens;
 }
@@ -69,7 +102,7 @@ std::int64_t parse_integer(const LineReader& reader, const LineReader::Token& to
   std::int64_t value = 0;
   const auto [end, error] = std::from_chars(token.text.data(), token.text.data() + token.text.size(), value);
   if (error != std::errc() || end != token.text.data() + token.text.size()) {
-    reader.fail(token.column, detail::message("expected ", what, " (an integer), found '", token.text, "'"));
+    reader.fail(token.column, detail::message("expected ", what, " (an integer), found ", quoted(token.text)));
   }
   return value;
 }
@@ -78,7 +111,7 @@ double parse_number(const LineReader& reader, const LineReader::Token& token) {
   double value = 0.0;
   const auto [end, error] = std::from_chars(token.text.data(), token.text.data() + token.text.size(), value);
   if (error != std::errc() || end != token.text.data() + token.text.size() || !std::isfinite(value)) {
-    reader.fail(token.column, detail::message("expected a finite coordinate, found '", token.text, "'"));
+    reader.fail(token.column, detail::message("expected a finite coordinate, found ", quoted(token.text)));
   }
   return value;
 }
@@ -90,7 +123,7 @@ std::vector<BezierPatch3> parse_bpt(std::string_view text, const std::string& na
   const auto header = expect_line(reader, 1, "the number of patches");
   const std::int64_t count = parse_integer(reader, header[0], "the number of patches");
   if (count < 1) reader.fail(header[0].column, detail::message("the number of patches must be at least 1, found ", count));
-  std::vector<BezierPatch3> patches;
+  std::vector<BezierPatch3> patches;  // not reserved: `count` is not trusted before its data is read
   for (std::int64_t p = 0; p < count; ++p) {
     const auto degrees = expect_line(reader, 2, detail::message("the degrees 'n m' of patch ", p));
     const std::int64_t n = parse_integer(reader, degrees[0], "degree n");
@@ -111,7 +144,8 @@ std::vector<BezierPatch3> parse_bpt(std::string_view text, const std::string& na
   }
   const auto rest = reader.next_line();
   if (!rest.empty()) {
-    reader.fail(rest.front().column, detail::message("unexpected data after the last of ", count, " patches: '", rest.front().text, "'"));
+    reader.fail(rest.front().column,
+                detail::message("unexpected data after the last of ", count, " patches: ", quoted(rest.front().text)));
   }
   return patches;
 }
@@ -119,6 +153,14 @@ std::vector<BezierPatch3> parse_bpt(std::string_view text, const std::string& na
 std::vector<BezierPatch3> read_bpt(const std::filesystem::path& path) { return parse_bpt(read_file(path), path.string()); }
 
 std::string format_bpt(std::span<const BezierPatch3> patches) {
+  // Write only what parse_bpt reads back: at least one patch, degrees within the limit.
+  if (patches.empty()) throw InvalidInput("format_bpt: no patches (a BPT file holds at least one)");
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    if (patches[p].degree_u() > max_bpt_degree || patches[p].degree_v() > max_bpt_degree) {
+      throw InvalidInput(detail::message("format_bpt: patch ", p, " has degrees (", patches[p].degree_u(), ", ",
+                                         patches[p].degree_v(), "), above the BPT limit ", max_bpt_degree));
+    }
+  }
   std::string text = std::to_string(patches.size()) + "\n";
   char buffer[64];
   for (const BezierPatch3& patch : patches) {
