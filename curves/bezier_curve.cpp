@@ -120,6 +120,10 @@ std::vector<Point<Dim>> derivatives(const BezierCurve<Dim>& curve, double t, int
 template <int Dim>
 Point<Dim> derivative(const BezierCurve<Dim>& curve, double t, int k) {
   if (k == 0) return curve.evaluate(t);
+  if (k > curve.degree()) {  // zero, without tabulating the k + 1 orders of derivatives()
+    detail::check_parameter("derivative", t);
+    return Point<Dim>::Zero();
+  }
   return derivatives(curve, t, k).back();
 }
 

@@ -34,8 +34,13 @@ std::int64_t segments_for_tolerance(const BezierCurve<Dim>& curve, double tolera
     throw InvalidInput(detail::message("segments_for_tolerance: tolerance ", tolerance, " needs ", needed, " segments (more than 2^31)"));
   }
   std::int64_t segments = std::max<std::int64_t>(1, static_cast<std::int64_t>(needed));
-  // Guard against the rounding of sqrt/ceil: the returned count must meet the bound.
+  // sqrt and ceil work on a rounded quotient and may land one off either way: step until the
+  // count meets the bound and one fewer does not.
   while (flatness_bound(curve, segments) > tolerance) ++segments;
+  while (segments > 1 && flatness_bound(curve, segments - 1) <= tolerance) --segments;
+  if (segments > (std::int64_t{1} << 31)) {
+    throw InvalidInput(detail::message("segments_for_tolerance: tolerance ", tolerance, " needs ", segments, " segments (more than 2^31)"));
+  }
   return segments;
 }
 
