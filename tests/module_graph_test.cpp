@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -48,15 +47,33 @@ Graph closure(const Graph& graph) {
   return result;
 }
 
+// The folder named by each `#include "folder/..."` line of a text (a hand-written scan: GCC 12
+// warns falsely inside std::regex under the sanitizers).
+std::vector<std::pair<std::string, std::string>> quoted_includes(const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> found;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::size_t k = line.find_first_not_of(" \t");
+    if (k == std::string::npos || line[k] != '#') continue;
+    k = line.find_first_not_of(" \t", k + 1);
+    if (k == std::string::npos || line.compare(k, 7, "include") != 0) continue;
+    const std::size_t open = line.find('"', k + 7);
+    if (open == std::string::npos) continue;
+    const std::size_t slash = line.find('/', open + 1);
+    const std::size_t close = line.find('"', open + 1);
+    if (slash == std::string::npos || close == std::string::npos || slash > close) continue;
+    found.emplace_back(line.substr(open + 1, slash - open - 1), line.substr(k - 1));
+  }
+  return found;
+}
+
 // The violations in one file's text: includes of another module that `module` may not use.
 std::vector<std::string> violations(const Graph& allowed, const std::string& module, const std::string& file,
                                     const std::string& text) {
-  static const std::regex include(R"(#\s*include\s*"([A-Za-z_]+)/[^"]+")");
   std::vector<std::string> found;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), include); it != std::sregex_iterator(); ++it) {
-    const std::string target = (*it)[1];
+  for (const auto& [target, line] : quoted_includes(text)) {
     if (!allowed.count(target)) continue;  // not a module (e.g. a system folder)
-    if (!allowed.at(module).count(target)) found.push_back(file + " includes " + (*it)[0].str());
+    if (!allowed.at(module).count(target)) found.push_back(file + " includes " + line);
   }
   return found;
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "tools/curve_demo.h"
+#include "tools/info_command.h"
 #include "tools/patches_command.h"
 
 int main(int argc, char** argv) {
@@ -25,10 +26,17 @@ int main(int argc, char** argv) {
   patches->add_option("file", patch_file, "BPT file (e.g. data/teapot.bpt)")->required();
   patches->add_flag("--json", json, "Print the report as JSON");
 
+  std::string mesh_file;
+  bool info_json = false;
+  CLI::App* info = app.add_subcommand("info", "Topology of a mesh file (OBJ, OFF, PLY)");
+  info->add_option("file", mesh_file, "Mesh file")->required();
+  info->add_flag("--json", info_json, "Print the report as JSON");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (demo->parsed()) patchwork::tools::run_curve_demo(std::cout, degree, evaluations);
     if (patches->parsed()) patchwork::tools::run_patches_report(std::cout, patch_file, json);
+    if (info->parsed()) patchwork::tools::run_info(std::cout, mesh_file, info_json);
   } catch (const std::exception& error) {
     std::cerr << "patchwork: " << error.what() << "\n";
     return 1;
