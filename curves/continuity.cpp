@@ -48,14 +48,19 @@ Continuity continuity(const BezierCurve<Dim>& first, const BezierCurve<Dim>& sec
   if (!std::isfinite(relative_tolerance) || relative_tolerance < 0.0) {
     throw InvalidInput(detail::message("continuity: relative_tolerance ", relative_tolerance, " is not >= 0"));
   }
-  const double magnitude = std::max(max_norm(first), max_norm(second));
+  // Each curve's rounding scale uses its own control points: a shared magnitude would let a large
+  // second curve (a C^k continuation onto a much longer interval) inflate the tolerance of the
+  // first curve's derivatives, whose 1/h1^j factor is then applied to the wrong size, and report
+  // C^(k+1) for a generic join.
+  const double magnitude1 = max_norm(first);
+  const double magnitude2 = max_norm(second);
   const int n = first.degree();
   const int m = second.degree();
   const double h1 = first.b() - first.a();
   const double h2 = second.b() - second.a();
   const auto tolerance = [&](int j) {
-    return relative_tolerance * std::max(detail::derivative_scale(n, j, h1, magnitude),
-                                         detail::derivative_scale(m, j, h2, magnitude));
+    return relative_tolerance * std::max(detail::derivative_scale(n, j, h1, magnitude1),
+                                         detail::derivative_scale(m, j, h2, magnitude2));
   };
 
   Continuity result{-1, false, (first.control_points().back() - second.control_points().front()).norm()};

@@ -9,9 +9,10 @@
 //   C^(j)(b) = n!/(n-j)! / (b-a)^j * Delta^j P_{n-j},   Delta^j P_i = sum_l (-1)^(j-l) C(j,l) P_{i+l}
 //
 // and "agree" means |difference| <= relative_tolerance * s_j, where the scale
-// s_j = max over both curves of n!/(n-j)!/h^j * 2^j * max_i |P_i| bounds the rounding in forming
-// the differences: two joins that are equal in exact arithmetic are reported equal, also for
-// control points far from the origin. G^1: C^0 and the limit tangents point the same way.
+// s_j = max over both curves of n!/(n-j)!/h^j * 2^j * max_i |P_i| (each curve with its own n,
+// h = b - a and P_i) bounds the rounding in forming the differences: two joins that are equal in
+// exact arithmetic are reported equal, also for control points far from the origin.
+// G^1: C^0 and the limit tangents point the same way.
 
 #include <vector>
 
