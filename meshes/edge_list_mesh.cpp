@@ -54,11 +54,27 @@ FaceVertexMesh to_face_vertex_mesh(const EdgeListMesh& mesh) {
   for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
     const auto& edges = mesh.face_edges(FaceId(f));
     sizes.push_back(static_cast<std::uint32_t>(edges.size()));
-    for (EdgeId e : edges) {
-      // The face walks e from -> to when it is the left face, else to -> from: its corner is the start.
-      const auto& ends = mesh.edge(e);
-      indices.push_back(mesh.left(e) == FaceId(f) ? ends[0].value : ends[1].value);
+    // The face walks e from -> to when it is the left face, else to -> from: its corner is the
+    // start. A face on both sides of an edge (it walks there and back, as in a b c b) leaves the
+    // direction open there, so walk from a start corner and keep the walk that closes.
+    const auto walk = [&](VertexId start, std::vector<std::uint32_t>& corners) {
+      VertexId corner = start;
+      for (EdgeId e : edges) {
+        const auto& ends = mesh.edge(e);
+        const bool left = mesh.left(e) == FaceId(f), right = mesh.right(e) == FaceId(f);
+        if (!((corner == ends[0] && left) || (corner == ends[1] && right))) return false;
+        corners.push_back(corner.value);
+        corner = corner == ends[0] ? ends[1] : ends[0];
+      }
+      return corner == start;
+    };
+    const auto& first = mesh.edge(edges[0]);
+    std::vector<std::uint32_t> corners;
+    if (!walk(first[0], corners)) {
+      corners.clear();
+      walk(first[1], corners);
     }
+    indices.insert(indices.end(), corners.begin(), corners.end());
   }
   return FaceVertexMesh(mesh.positions(), std::move(sizes), std::move(indices));
 }

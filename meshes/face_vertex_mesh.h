@@ -26,7 +26,8 @@ using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 class FaceVertexMesh {
  public:
-  FaceVertexMesh() = default;
+  /// The empty mesh (no vertices, no faces).
+  FaceVertexMesh() : offsets_(1, 0) {}
   /// \throws TopologyError if a face has fewer than 3 corners, an index is out of range, or the
   ///         sizes do not add up to the number of indices; InvalidInput if a position is not finite.
   FaceVertexMesh(Positions positions, std::vector<std::uint32_t> face_sizes, std::vector<std::uint32_t> face_indices);
@@ -59,7 +60,7 @@ class FaceVertexMesh {
   Positions positions_;
   std::vector<std::uint32_t> face_sizes_;
   std::vector<std::uint32_t> face_indices_;
-  std::vector<std::size_t> offsets_;  // offsets_[f] = first index of face f; size F + 1
+  std::vector<std::size_t> offsets_;  // offsets_[f] = first index of face f; size F + 1 (also when empty)
 };
 
 }  // namespace patchwork

@@ -20,6 +20,18 @@ struct EdgeUse {
   std::uint32_t face;
 };
 
+// The faces with a corner at v, ascending, as "3, 8, 12": error messages name them.
+std::string faces_around(const std::vector<VertexId>& origin, const std::vector<FaceId>& face, std::uint32_t v) {
+  std::vector<std::uint32_t> faces;
+  for (std::size_t h = 0; h < origin.size(); ++h) {
+    if (origin[h].value == v && face[h].valid()) faces.push_back(face[h].value);
+  }
+  std::sort(faces.begin(), faces.end());
+  std::string list;
+  for (std::uint32_t f : faces) list += (list.empty() ? "" : ", ") + std::to_string(f);
+  return list;
+}
+
 }  // namespace
 
 HalfedgeMesh::HalfedgeMesh(const FaceVertexMesh& mesh) : positions_(mesh.positions()) {
@@ -107,7 +119,8 @@ HalfedgeMesh::HalfedgeMesh(const FaceVertexMesh& mesh) : positions_(mesh.positio
     if (!face_[h].valid()) {
       if (vertex_halfedge_[v.index()].valid() && !face_[vertex_halfedge_[v.index()].index()].valid()) {
         throw TopologyError(detail::message("HalfedgeMesh: vertex ", v.value,
-                                            " is on the boundary more than once (its faces form several fans)"));
+                                            " is on the boundary more than once (its faces ",
+                                            faces_around(origin_, face_, v.value), " form several fans)"));
       }
       vertex_halfedge_[v.index()] = HalfedgeId(h);
     } else if (!vertex_halfedge_[v.index()].valid()) {
@@ -131,8 +144,9 @@ HalfedgeMesh::HalfedgeMesh(const FaceVertexMesh& mesh) : positions_(mesh.positio
       h = twin(prev(h));
     } while (h != start && visited <= outgoing_count[v]);
     if (visited != outgoing_count[v]) {
-      throw TopologyError(detail::message("HalfedgeMesh: the faces around vertex ", v,
-                                          " form several fans (a non-manifold vertex)"));
+      throw TopologyError(detail::message("HalfedgeMesh: the faces around vertex ", v, " (faces ",
+                                          faces_around(origin_, face_, v),
+                                          ") form several fans (a non-manifold vertex)"));
     }
   }
 }

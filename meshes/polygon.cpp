@@ -36,9 +36,9 @@ Vec3 newell_normal(std::span<const Vec3> polygon) {
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const Vec3& p = polygon[i];
     const Vec3& q = polygon[(i + 1) % polygon.size()];
-    normal += (p - q).cross(p + q);
+    normal += (p - q).cross(p + q);  // = 2 p x q
   }
-  return 0.5 * normal;
+  return 0.25 * normal;  // sum p x q / 2 is the vector area
 }
 
 double polygon_area(std::span<const Vec3> polygon) { return newell_normal(polygon).norm(); }

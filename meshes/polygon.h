@@ -3,9 +3,10 @@
 //
 //   simple       no two edges meet except neighbours at their shared corner (Def 43)
 //   planar       all corners within `tolerance` of one plane (Def 42)
-//   Newell's normal  N = sum_i (p_i - p_{i+1}) x (p_i + p_{i+1}) / 2: for a planar polygon its
-//                length is the area and its direction follows the corners counter-clockwise
-//                (right-hand rule); robust for non-planar and non-convex polygons
+//   Newell's normal  N = sum_i (p_i - p_{i+1}) x (p_i + p_{i+1}) / 4 = sum_i p_i x p_{i+1} / 2:
+//                for a planar polygon its length is the area and its direction follows the
+//                corners counter-clockwise (right-hand rule); robust for non-planar and
+//                non-convex polygons
 //   orientation with respect to a normal n (Def 44-45): counter-clockwise when N . n > 0
 
 #include <span>
