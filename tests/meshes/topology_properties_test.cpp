@@ -40,7 +40,7 @@ Answers answers(const TopologyReport& r) {
   return a;
 }
 
-// The answers of a mesh minus its unreferenced vertices (local operations keep them all used).
+// Every answer analyze() gives for a mesh.
 Answers topology_of(const FaceVertexMesh& mesh) { return answers(analyze(mesh)); }
 
 // A random edge {a, b} of the mesh (as the corner pair of a random face).
@@ -73,7 +73,7 @@ RC_GTEST_PROP(TopologyProperties, KnownSurfacesGetTheirAnswers, ()) {
   RC_ASSERT(report.non_manifold_vertices.empty());
   RC_ASSERT(report.faces_repeating_a_vertex.empty());
   RC_ASSERT(report.genus == surface.genus);
-  // Boundary edges: each loop of a manifold has as many edges as vertices, all used by one face.
+  // Boundary edges are the edges of exactly one face.
   Count single_use_edges = 0;
   for (const auto& [key, walks] : edge_walks(mesh)) single_use_edges += walks.size() == 1 ? 1 : 0;
   RC_ASSERT(report.boundary_edges == single_use_edges);
