@@ -34,6 +34,27 @@ double flatness_bound(const SecondDerivativeBounds& M, double du, double dv) {
   return (M.uu * du * du + 2.0 * M.uv * du * dv + M.vv * dv * dv) / 8.0;
 }
 
+double triangle_flatness_bound(const SecondDerivativeBounds& M, const Vec2& p0, const Vec2& p1, const Vec2& p2,
+                               double aspect) {
+  const double s = aspect > 0.0 && std::isfinite(aspect) ? aspect : 1.0;
+  const Vec2 scale(std::sqrt(M.uu + s * M.uv), std::sqrt(M.vv + M.uv / s));
+  const Vec2 a = p0.cwiseProduct(scale);
+  const Vec2 b = p1.cwiseProduct(scale);
+  const Vec2 c = p2.cwiseProduct(scale);
+  // Smallest enclosing circle of a triangle: half its longest side if the angle opposite is not
+  // acute, else the circumcircle, r = |ab| |bc| |ca| / (4 area).
+  const double ab = (b - a).squaredNorm();
+  const double bc = (c - b).squaredNorm();
+  const double ca = (a - c).squaredNorm();
+  const double longest = std::max({ab, bc, ca});
+  double r2 = longest / 4.0;
+  if (2.0 * longest < ab + bc + ca) {  // acute: the longest side squared is below the sum of the others
+    const double cross = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    if (cross != 0.0) r2 = ab * bc * ca / (4.0 * cross * cross);
+  }
+  return r2 / 2.0;
+}
+
 GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance) {
   if (!std::isfinite(tolerance) || !(tolerance > 0.0)) {
     throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " is not positive and finite"));

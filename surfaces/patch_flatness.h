@@ -32,6 +32,15 @@ SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch);
 /// The bound for parameter steps du, dv. \throws InvalidInput unless both are in (0, 1].
 double flatness_bound(const SecondDerivativeBounds& bounds, double du, double dv);
 
+/// The bound on |F - L| over one triangle of parameter points p0, p1, p2 (any shape), L linear on
+/// it: |F - L| <= (1/2) sum_k lambda_k q(p_k - x) with q(d) = M_uu d_u^2 + 2 M_uv |d_u d_v| +
+/// M_vv d_v^2 (Taylor at x, lambda the barycentric weights of x); q(d) <= d^T A d with
+/// A = diag(M_uu + s M_uv, M_vv + M_uv / s) for any s > 0, and then the maximum over the triangle
+/// is r^2 / 2 with r the radius of its smallest enclosing circle in the metric of A. With
+/// s = `aspect` (= dv/du of a grid) a grid triangle gets flatness_bound(du, dv) exactly.
+double triangle_flatness_bound(const SecondDerivativeBounds& bounds, const Vec2& p0, const Vec2& p1, const Vec2& p2,
+                               double aspect = 1.0);
+
 /// A grid of segments_u x segments_v cells.
 struct GridSize {
   std::int64_t segments_u;

@@ -40,16 +40,17 @@ PatchGridWeights PatchGridWeights::uniform(int n, int m, std::size_t segments_u,
   return PatchGridWeights(n, m, uniform_parameters(segments_u), uniform_parameters(segments_v));
 }
 
-PatchGridSamples evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights) {
+PatchGridSamples evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights, bool with_tangents) {
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   if (weights.degree_u() != n || weights.degree_v() != m) {
     throw InvalidInput(detail::message("evaluate_grid: weights of degrees (", weights.degree_u(), ", ", weights.degree_v(),
                                        ") for a patch of degrees (", n, ", ", m, ")"));
   }
-  PatchGridSamples samples{weights.us().size(), weights.vs().size(), {}, {}};
+  PatchGridSamples samples{weights.us().size(), weights.vs().size(), {}, {}, {}};
   samples.points.resize(samples.count_u * samples.count_v);
   samples.normals.resize(samples.points.size());
+  if (with_tangents) samples.tangents.resize(samples.points.size());
   std::vector<Vec3> Q(static_cast<std::size_t>(n) + 1);
   std::vector<Vec3> dQ(static_cast<std::size_t>(n) + 1);
   // Degeneracy is judged as in unit_normal: relative to the net's size.
@@ -57,6 +58,7 @@ PatchGridSamples evaluate_grid(const BezierPatch3& patch, const PatchGridWeights
   for (const Vec3& p : patch.control_points()) box.extend(p);
   const double scale = box.diagonal().norm();
   const double threshold = 1e-12 * std::max(n * m, 1) * scale * scale;
+  const double derivative_threshold = 1e-12 * std::max({n, m, 1}) * scale;
   for (std::size_t b = 0; b < samples.count_v; ++b) {
     const std::span<const double> bv = weights.v_values(b);
     const std::span<const double> dbv = weights.v_derivatives(b);
@@ -84,8 +86,18 @@ PatchGridSamples evaluate_grid(const BezierPatch3& patch, const PatchGridWeights
       const std::size_t index = a + samples.count_u * b;
       samples.points[index] = point;
       const Vec3 normal = du.cross(dv);
-      samples.normals[index] =
-          normal.norm() > threshold ? normal.normalized() : unit_normal(patch, weights.us()[a], weights.vs()[b]);
+      const bool regular = normal.norm() > threshold;
+      const Vec3 unit = regular ? normal.normalized() : unit_normal(patch, weights.us()[a], weights.vs()[b]);
+      samples.normals[index] = unit;
+      if (!with_tangents) continue;
+      const Vec3 tangent = du - du.dot(unit) * unit;
+      if (regular && tangent.norm() > derivative_threshold) {
+        // Regular point: F_u lies in the tangent plane and (n x F_u) . F_v = n . (F_u x F_v) > 0.
+        const Vec3 t = tangent.normalized();
+        samples.tangents[index] = Vec4(t.x(), t.y(), t.z(), 1.0);
+      } else {
+        samples.tangents[index] = unit_tangent(patch, weights.us()[a], weights.vs()[b], unit);
+      }
     }
   }
   return samples;

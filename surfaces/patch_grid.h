@@ -57,10 +57,13 @@ struct PatchGridSamples {
   std::size_t count_v;
   std::vector<Vec3> points;
   std::vector<Vec3> normals;
+  /// Unit tangents along u with handedness w (surface_normal.h unit_tangent); empty unless asked.
+  std::vector<Vec4> tangents;
 };
 
-/// F and the unit normal at every grid point (the limit normal where F_u x F_v vanishes).
+/// F and the unit normal at every grid point (the limit normal where F_u x F_v vanishes), and the
+/// unit tangents if `with_tangents`.
 /// \throws InvalidInput if the weights' degrees differ from the patch's.
-PatchGridSamples evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights);
+PatchGridSamples evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights, bool with_tangents = false);
 
 }  // namespace patchwork

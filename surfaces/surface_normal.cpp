@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/errors.h"
 
@@ -25,6 +26,16 @@ Vec3 directional(const PartialDerivatives<3>& F, int a0, int b0, int j, double d
   return sum;
 }
 
+// The unit direction from (u, v) towards the centre (1/2, 1/2) of the square (the diagonal at
+// the centre itself).
+std::pair<double, double> towards_centre(double u, double v) {
+  const double du = 0.5 - u;
+  const double dv = 0.5 - v;
+  const double length = std::hypot(du, dv);
+  if (length < 1e-12) return {std::sqrt(0.5), std::sqrt(0.5)};
+  return {du / length, dv / length};
+}
+
 }  // namespace
 
 namespace detail {
@@ -36,15 +47,7 @@ Vec3 limit_unit_normal(const PartialDerivatives<3>& F, double u, double v, doubl
   const double degree = std::max({n, m, 1});
   const double threshold = 1e-12 * std::max(n * m, 1) * scale * scale;
   if (first.norm() > threshold) return first.normalized();
-  double du = 0.5 - u;
-  double dv = 0.5 - v;
-  const double length = std::hypot(du, dv);
-  if (length < 1e-12) {
-    du = dv = std::sqrt(0.5);
-  } else {
-    du /= length;
-    dv /= length;
-  }
+  const auto [du, dv] = towards_centre(u, v);
   for (int k = 1; k + 1 <= F.order(); ++k) {
     Vec3 Nk = Vec3::Zero();
     for (int j = 0; j <= k; ++j) {
@@ -73,6 +76,38 @@ Vec3 unit_normal(const BezierPatch3& patch, double u, double v) {
   const Vec3 first = normal(patch, u, v);
   if (first.norm() > 1e-12 * std::max(n * m, 1) * scale * scale) return first.normalized();
   return detail::limit_unit_normal(partial_derivatives(patch, u, v, max_normal_order(n, m) + 1), u, v, scale, n, m);
+}
+
+Vec3 unit_derivative_direction(const BezierPatch3& patch, double u, double v, bool along_u) {
+  const int n = patch.degree_u();
+  const int m = patch.degree_v();
+  const double scale = net_size(patch.control_points());
+  const double degree = std::max({n, m, 1});
+  const double threshold = 1e-12 * degree * scale;
+  const PartialDerivatives<3> F = partial_derivatives(patch, u, v, std::min(n + m, 12) + 1);
+  const int a0 = along_u ? 1 : 0;
+  const int b0 = along_u ? 0 : 1;
+  if (F.at(a0, b0).norm() > threshold) return F.at(a0, b0).normalized();
+  const auto [du, dv] = towards_centre(u, v);
+  // d/ds^k of the derivative along the inward direction; the first that does not vanish.
+  for (int k = 1; k + 1 <= F.order(); ++k) {
+    const Vec3 Dk = directional(F, a0, b0, k, du, dv);
+    if (Dk.norm() > threshold * std::pow(degree, k)) return Dk.normalized();
+  }
+  throw NumericalError(detail::message("unit_derivative_direction: the patch is degenerate around (", u, ", ", v, ")"));
+}
+
+Vec4 unit_tangent(const BezierPatch3& patch, double u, double v, const Vec3& unit_normal) {
+  const Vec3 along_u = unit_derivative_direction(patch, u, v, true);
+  Vec3 tangent = along_u - along_u.dot(unit_normal) * unit_normal;
+  if (tangent.norm() < 1e-9) {
+    // F_u along the normal can only happen at a singular point; any tangent direction serves.
+    tangent = unit_normal.unitOrthogonal();
+  }
+  tangent.normalize();
+  const Vec3 along_v = unit_derivative_direction(patch, u, v, false);
+  const double w = unit_normal.cross(tangent).dot(along_v) < 0.0 ? -1.0 : 1.0;
+  return {tangent.x(), tangent.y(), tangent.z(), w};
 }
 
 Vec3 unit_normal(const RationalBezierPatch& patch, double u, double v) {

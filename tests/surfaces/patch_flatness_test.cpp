@@ -72,3 +72,37 @@ TEST(PatchFlatness, RejectsBadInput) {
 
 }  // namespace
 }  // namespace patchwork
+
+namespace patchwork {
+namespace {
+
+TEST(TriangleFlatnessBound, AGridTriangleGetsTheGridBound) {
+  const SecondDerivativeBounds M{3.0, 1.5, 0.7};
+  const double du = 0.25, dv = 0.1;
+  EXPECT_NEAR(triangle_flatness_bound(M, Vec2(0, 0), Vec2(du, 0), Vec2(du, dv), dv / du), flatness_bound(M, du, dv),
+              1e-15);
+}
+
+// The bound holds for any triangle (not just grid cells): sampled |F - L| never exceeds it.
+RC_GTEST_PROP(TriangleFlatnessBound, BoundsTheSampledDistanceOnAnyTriangle, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 4);
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  std::array<Vec2, 3> p;
+  for (Vec2& q : p) q = Vec2(*testing::coordinate(0, 1), *testing::coordinate(0, 1));
+  const double aspect = *testing::coordinate(0.1, 10);
+  const double bound = triangle_flatness_bound(M, p[0], p[1], p[2], aspect);
+  std::array<Vec3, 3> corners;
+  for (int k = 0; k < 3; ++k) corners[k] = patch.evaluate(p[k].x(), p[k].y());
+  constexpr int samples = 12;
+  for (int a = 0; a <= samples; ++a) {
+    for (int b = 0; a + b <= samples; ++b) {
+      const double x = static_cast<double>(a) / samples, y = static_cast<double>(b) / samples;
+      const Vec2 uv = (1 - x - y) * p[0] + x * p[1] + y * p[2];
+      const Vec3 linear = (1 - x - y) * corners[0] + x * corners[1] + y * corners[2];
+      RC_ASSERT((patch.evaluate(uv.x(), uv.y()) - linear).norm() <= bound * (1 + 1e-9) + 1e-12 * testing::net_scale(patch));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace patchwork

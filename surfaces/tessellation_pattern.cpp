@@ -1,0 +1,175 @@
+#include "surfaces/tessellation_pattern.h"
+
+#include <algorithm>
+
+#include "core/assert.h"
+#include "core/errors.h"
+
+namespace patchwork {
+namespace {
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+// Point indices of a pattern: corners 0..3, then the edges' inner points, then the interior
+// grid (i, j), 1 <= i < inner_u, 1 <= j < inner_v, row by row.
+class PatternIndex {
+ public:
+  PatternIndex(const PatternRates& rates, int inner_u, int inner_v) : inner_u_(inner_u), inner_v_(inner_v) {
+    std::uint32_t offset = 4;
+    for (int k = 0; k < 4; ++k) {
+      edge_offset_[k] = offset;
+      offset += static_cast<std::uint32_t>(rates.edges[k] - 1);
+    }
+    interior_offset_ = offset;
+  }
+  std::uint32_t corner(int c) const { return static_cast<std::uint32_t>(c); }
+  std::uint32_t edge(int k, int step) const { return edge_offset_[k] + static_cast<std::uint32_t>(step - 1); }
+  std::uint32_t interior(int i, int j) const {
+    return interior_offset_ + static_cast<std::uint32_t>((i - 1) + (inner_u_ - 1) * (j - 1));
+  }
+  std::uint32_t interior_offset() const { return interior_offset_; }
+
+ private:
+  int inner_u_;
+  int inner_v_;
+  std::array<std::uint32_t, 4> edge_offset_{};
+  std::uint32_t interior_offset_ = 0;
+};
+
+double ratio(int k, int n) { return static_cast<double>(k) / static_cast<double>(n); }
+
+void add_boundary_points(const PatternRates& rates, std::vector<PatternPoint>& points) {
+  const std::array<Vec2, 4> corners = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  for (int c = 0; c < 4; ++c) points.push_back({corners[c], PatternPoint::Kind::corner, static_cast<std::uint8_t>(c), 0});
+  for (int k = 0; k < 4; ++k) {
+    const int e = rates.edges[k];
+    for (int step = 1; step < e; ++step) {
+      const double t = ratio(step, e);
+      // boundary_curve directions: v0 and v1 along increasing u, u1 and u0 along increasing v.
+      const Vec2 uv = k == 0 ? Vec2(t, 0) : k == 1 ? Vec2(1, t) : k == 2 ? Vec2(t, 1) : Vec2(0, t);
+      points.push_back({uv, PatternPoint::Kind::edge, static_cast<std::uint8_t>(k), step});
+    }
+  }
+}
+
+void add_interior_points(int inner_u, int inner_v, std::vector<PatternPoint>& points) {
+  for (int j = 1; j < inner_v; ++j) {
+    for (int i = 1; i < inner_u; ++i) {
+      points.push_back({Vec2(ratio(i, inner_u), ratio(j, inner_v)), PatternPoint::Kind::interior, 0, 0});
+    }
+  }
+}
+
+// The cells [i0, i1) x [j0, j1) of a grid whose point (i, j) has index at(i, j).
+template <class At>
+void add_grid_cells(int i0, int i1, int j0, int j1, const At& at, std::vector<Triangle>& triangles) {
+  for (int j = j0; j < j1; ++j) {
+    for (int i = i0; i < i1; ++i) {
+      triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+}
+
+// Joins the outer points (positions s = k / a along the side, k = 0..a) to the inner points
+// (positions (t + 1) / b_count for t = 0 .. b_count - 2) by advancing, at each step, along the
+// sequence whose next point comes first. Both run counter-clockwise, the inner row inside.
+void stitch_side(const std::vector<std::uint32_t>& outer, const std::vector<std::uint32_t>& inner, int inner_rate,
+                 std::vector<Triangle>& triangles) {
+  const std::size_t a = outer.size() - 1;
+  const std::size_t b = inner.size() - 1;
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < a || j < b) {
+    const double next_outer = ratio(static_cast<int>(i + 1), static_cast<int>(a));
+    const double next_inner = ratio(static_cast<int>(j + 2), inner_rate);
+    if (j == b || (i < a && next_outer <= next_inner)) {
+      triangles.push_back({outer[i], outer[i + 1], inner[j]});
+      ++i;
+    } else {
+      triangles.push_back({outer[i], inner[j + 1], inner[j]});
+      ++j;
+    }
+  }
+}
+
+}  // namespace
+
+InnerGrid inner_grid(const PatternRates& rates) {
+  const bool grid = rates.edges[0] == rates.inner_u && rates.edges[2] == rates.inner_u &&
+                    rates.edges[1] == rates.inner_v && rates.edges[3] == rates.inner_v;
+  if (grid) return {rates.inner_u, rates.inner_v, true};
+  return {std::max(rates.inner_u, 2), std::max(rates.inner_v, 2), false};
+}
+
+std::uint32_t first_edge_point(const PatternRates& rates, int edge) {
+  return PatternIndex(rates, std::max(rates.inner_u, 2), std::max(rates.inner_v, 2)).edge(edge, 1);
+}
+
+TessellationPattern make_pattern(const PatternRates& rates) {
+  if (rates.inner_u < 1 || rates.inner_v < 1 ||
+      std::any_of(rates.edges.begin(), rates.edges.end(), [](int e) { return e < 1; })) {
+    throw InvalidInput(detail::message("make_pattern: rates (", rates.inner_u, ", ", rates.inner_v, "; ", rates.edges[0],
+                                       ", ", rates.edges[1], ", ", rates.edges[2], ", ", rates.edges[3],
+                                       ") must all be at least 1"));
+  }
+  TessellationPattern pattern;
+  const InnerGrid inner = inner_grid(rates);
+  pattern.grid = inner.grid;
+  const int nu = inner.u;
+  const int nv = inner.v;
+  double boundary = 0.0;
+  for (int e : rates.edges) boundary += e;
+  if (boundary + static_cast<double>(nu + 1) * (nv + 1) > 2147483648.0) {
+    throw InvalidInput(detail::message("make_pattern: rates (", nu, ", ", nv, ") give more than 2^31 points"));
+  }
+  const PatternIndex index(rates, nu, nv);
+  pattern.points.reserve(static_cast<std::size_t>(boundary) + static_cast<std::size_t>(nu + 1) * (nv + 1));
+  add_boundary_points(rates, pattern.points);
+  add_interior_points(nu, nv, pattern.points);
+
+  if (pattern.grid) {
+    const auto at = [&](int i, int j) -> std::uint32_t {
+      const bool left = i == 0, right = i == nu, bottom = j == 0, top = j == nv;
+      if (bottom && left) return index.corner(0);
+      if (bottom && right) return index.corner(1);
+      if (top && right) return index.corner(2);
+      if (top && left) return index.corner(3);
+      if (bottom) return index.edge(0, i);
+      if (right) return index.edge(1, j);
+      if (top) return index.edge(2, i);
+      if (left) return index.edge(3, j);
+      return index.interior(i, j);
+    };
+    pattern.triangles.reserve(2 * static_cast<std::size_t>(nu) * nv);
+    add_grid_cells(0, nu, 0, nv, at, pattern.triangles);
+    return pattern;
+  }
+
+  // The inner grid without its outer ring of cells, then one stitched strip per side.
+  const auto inner_at = [&](int i, int j) { return index.interior(i, j); };
+  add_grid_cells(1, nu - 1, 1, nv - 1, inner_at, pattern.triangles);
+  for (int side = 0; side < 4; ++side) {
+    const int e = rates.edges[side];
+    std::vector<std::uint32_t> outer{index.corner(side)};
+    // Counter-clockwise: v0 and u1 run with their boundary_curve, v1 and u0 against it.
+    for (int k = 1; k < e; ++k) outer.push_back(index.edge(side, side < 2 ? k : e - k));
+    outer.push_back(index.corner((side + 1) % 4));
+    std::vector<std::uint32_t> inner;
+    const int along = side % 2 == 0 ? nu : nv;
+    for (int t = 1; t < along; ++t) {
+      switch (side) {
+        case 0: inner.push_back(index.interior(t, 1)); break;
+        case 1: inner.push_back(index.interior(nu - 1, t)); break;
+        case 2: inner.push_back(index.interior(nu - t, nv - 1)); break;
+        default: inner.push_back(index.interior(1, nv - t)); break;
+      }
+    }
+    stitch_side(outer, inner, along, pattern.triangles);
+  }
+  PATCHWORK_ASSERT(pattern.points.size() == index.interior_offset() + static_cast<std::size_t>(nu - 1) * (nv - 1),
+                   "pattern point count");
+  return pattern;
+}
+
+}  // namespace patchwork

@@ -1,0 +1,78 @@
+#pragma once
+// The (u, v) pattern of a tessellated patch, apart from any surface: where the points go and how
+// they are joined into triangles, given an inner rate per direction and a rate per edge (the
+// shape of OpenSubdiv's Bfr::Tessellation).
+//
+//   c3 ------- edge v1 (rate e2) ------- c2        c0 = (0,0)  c1 = (1,0)
+//    |   .     .     .     .     .    |            c2 = (1,1)  c3 = (0,1)
+//    |   .   inner grid N_u x N_v .   |  edge u1
+//  edge u0   .     .     .     .     (rate e1)     edge k runs from corner k to corner k+1
+//  (rate e3) .     .     .     .      |            counter-clockwise around the square
+//    |   .     .     .     .     .    |
+//   c0 ------- edge v0 (rate e0) ------- c1
+//
+// Points come boundary first: the four corners, then each edge's inner points (steps 1 .. e-1 in
+// the direction of boundary_curve: u increasing on v0 and v1, v increasing on u0 and u1), then
+// the interior. So two patches sharing an edge with one rate see the same boundary points, and a
+// tessellator can give them one set of vertex ids.
+//
+// When every edge rate equals the inner rate along it, the pattern is the N_u x N_v grid, each
+// cell split along its (i, j)-(i+1, j+1) diagonal. Otherwise the inner grid keeps at least two
+// segments per direction, its outer ring is dropped, and each side of the square is stitched to
+// the first inner row or column by merging the two point sequences in order: every edge keeps
+// its own rate, and no point lies inside another triangle's edge (no T-junctions).
+// Triangles are counter-clockwise in (u, v).
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/types.h"
+
+namespace patchwork {
+
+/// The rates of a pattern: segments of the inner grid and of each edge (v0, u1, v1, u0).
+struct PatternRates {
+  int inner_u;
+  int inner_v;
+  std::array<int, 4> edges;
+};
+
+/// Where a pattern point lies.
+struct PatternPoint {
+  enum class Kind : std::uint8_t { corner, edge, interior };
+  Vec2 uv;
+  Kind kind;
+  /// Corner 0..3 or edge 0..3 (PatchEdge order); unused for interior points.
+  std::uint8_t index;
+  /// Step 1 .. rate-1 along the edge, in boundary_curve direction (edge points only).
+  std::int32_t step;
+};
+
+struct TessellationPattern {
+  /// Corners, then edge points edge by edge, then interior points.
+  std::vector<PatternPoint> points;
+  /// Point indices, counter-clockwise in (u, v).
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  /// The pattern is the plain inner grid (every edge rate equals the inner rate along it).
+  bool grid;
+};
+
+/// The inner grid a pattern uses: the rates themselves for a plain grid, else at least 2 each.
+struct InnerGrid {
+  int u;
+  int v;
+  bool grid;
+};
+
+/// The inner grid of the pattern for `rates`.
+InnerGrid inner_grid(const PatternRates& rates);
+
+/// The pattern for `rates`. \throws InvalidInput if a rate is < 1 or the pattern would have
+/// more than 2^31 points.
+TessellationPattern make_pattern(const PatternRates& rates);
+
+/// Index of the first point of edge `edge` in a pattern with these rates (its step 1).
+std::uint32_t first_edge_point(const PatternRates& rates, int edge);
+
+}  // namespace patchwork

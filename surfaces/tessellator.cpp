@@ -1,0 +1,577 @@
+#include "surfaces/tessellator.h"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "core/assert.h"
+#include "core/errors.h"
+#include "core/parallel.h"
+#include "core/union_find.h"
+#include "surfaces/patch_bounding_box.h"
+#include "surfaces/patch_flatness.h"
+#include "surfaces/patch_grid.h"
+#include "surfaces/tessellation_pattern.h"
+
+namespace patchwork {
+namespace {
+
+using Triangle = std::array<std::uint32_t, 3>;
+constexpr std::uint32_t no_id = 0xffffffffu;
+
+// Edge k of a patch runs (in boundary_curve direction) from corner edge_start(k) to edge_end(k);
+// corners are numbered c0 = (0,0), c1 = (1,0), c2 = (1,1), c3 = (0,1).
+constexpr std::array<int, 4> edge_start = {0, 1, 3, 0};
+constexpr std::array<int, 4> edge_end = {1, 2, 2, 3};
+
+// Segments along edge k for inner rates (nu, nv): v0 and v1 run along u.
+int along(int edge, int nu, int nv) { return edge % 2 == 0 ? nu : nv; }
+
+// What one patch needs before evaluation.
+struct PatchPlan {
+  bool culled = false;
+  double tolerance = 0.0;
+  SecondDerivativeBounds bounds{0, 0, 0};
+  int nu = 1;
+  int nv = 1;
+};
+
+// The points along a shared, open or collapsed edge, numbered in its owner's boundary_curve
+// direction. Every patch side of the class sees the same points.
+struct EdgeClass {
+  std::uint32_t owner = 0;
+  bool collapsed = false;
+  int rate = 1;
+  std::uint32_t first_id = no_id;  // welded id of step 1
+};
+
+// One patch edge's view of its class.
+struct EdgeSlot {
+  std::uint32_t edge_class = no_id;
+  bool reversed = false;  // runs against the owner's direction
+};
+
+struct PatchOutput {
+  TessellationPattern pattern;
+  std::vector<std::uint32_t> welded;  // per pattern point
+  std::vector<bool> owner;            // this patch supplies the welded point's position
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;
+  std::vector<Vec4> tangents;
+  std::vector<Triangle> kept;     // pattern-local, reordered for the vertex cache
+  std::vector<Triangle> dropped;  // use one welded point twice (at a collapsed edge)
+  double bound = 0.0;
+};
+
+void check_positive(double value, const char* name) {
+  if (!std::isfinite(value) || !(value > 0.0)) {
+    throw InvalidInput(detail::message("tessellate: ", name, " ", value, " is not positive and finite"));
+  }
+}
+
+// The a-priori bound of every triangle of a pattern, the largest (dropped triangles included:
+// their parameter triangles map onto a mesh edge, which must be as close to the surface).
+double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeBounds& bounds, int nu, int nv) {
+  if (pattern.grid) return flatness_bound(bounds, 1.0 / nu, 1.0 / nv);
+  const double aspect = static_cast<double>(nu) / nv;
+  double bound = 0.0;
+  for (const Triangle& t : pattern.triangles) {
+    bound = std::max(bound, triangle_flatness_bound(bounds, pattern.points[t[0]].uv, pattern.points[t[1]].uv,
+                                                    pattern.points[t[2]].uv, aspect));
+  }
+  return bound;
+}
+
+class Tessellator {
+ public:
+  Tessellator(const PatchSet& set, const TessellationOptions& options)
+      : set_(set), options_(options), patches_(set.patches()), plans_(patches_.size()), slots_(patches_.size()) {}
+
+  Tessellation run() {
+    plan_patches();
+    build_edge_classes();
+    if (!options_.segments) raise_rates_to_bounds();
+    check_triangle_budget();
+    number_welded_points();
+    outputs_.resize(patches_.size());
+    parallel_for(patches_.size(), options_.threads, [&](std::size_t p) {
+      if (!plans_[p].culled) tessellate_patch(static_cast<std::uint32_t>(p));
+    });
+    Tessellation result = assemble();
+    if (options_.measure) result.measured_error = measure();
+    if (options_.optimize) optimize_vertex_fetch(result.mesh);
+    return result;
+  }
+
+ private:
+  // --- rates ------------------------------------------------------------------------------
+
+  void plan_patches() {
+    const int modes = options_.tolerance.has_value() + options_.relative_tolerance.has_value() +
+                      options_.segments.has_value() + options_.camera.has_value();
+    if (modes != 1) {
+      throw InvalidInput(detail::message("tessellate: give exactly one of tolerance, relative tolerance, segments "
+                                         "and camera (", modes, " given)"));
+    }
+    if (!(options_.crease_angle >= 0.0) || !std::isfinite(options_.crease_angle)) {
+      throw InvalidInput(detail::message("tessellate: crease angle ", options_.crease_angle, " is not >= 0"));
+    }
+    double tolerance = 0.0;
+    if (options_.tolerance) {
+      check_positive(*options_.tolerance, "tolerance");
+      tolerance = *options_.tolerance;
+    } else if (options_.relative_tolerance) {
+      check_positive(*options_.relative_tolerance, "relative tolerance");
+      tolerance = *options_.relative_tolerance * surface_diagonal();
+      check_positive(tolerance, "tolerance (relative tolerance times the box diagonal)");
+    } else if (options_.segments) {
+      if (*options_.segments < 1 || *options_.segments > (1 << 20)) {
+        throw InvalidInput(detail::message("tessellate: segments ", *options_.segments, " is not in [1, 2^20]"));
+      }
+    } else {
+      validate(*options_.camera);
+      check_positive(options_.pixel_tolerance, "pixel tolerance");
+    }
+    double focal = options_.camera ? focal_length_pixels(*options_.camera) : 0.0;
+    // Patches reaching behind the near limit get the tolerance of this depth.
+    const double near_depth = 1e-3 * set_.size();
+    for (std::size_t p = 0; p < patches_.size(); ++p) {
+      PatchPlan& plan = plans_[p];
+      plan.bounds = second_derivative_bounds(patches_[p]);
+      if (options_.segments) {
+        plan.nu = plan.nv = *options_.segments;
+        continue;
+      }
+      plan.tolerance = tolerance;
+      if (options_.camera) {
+        const Camera& camera = *options_.camera;
+        plan.tolerance = options_.pixel_tolerance * std::max(nearest_depth(patches_[p], camera), near_depth) / focal;
+        plan.culled = outside_frustum(patches_[p], camera) || back_facing(patches_[p], camera.eye);
+      }
+      const GridSize grid = grid_for_tolerance(plan.bounds, plan.tolerance);
+      // A curved patch keeps two segments per direction at any tolerance: with one, a tube of
+      // two patches (the teapot's handle) would flatten into a doubled ribbon.
+      const bool flat = plan.bounds.uu == 0.0 && plan.bounds.uv == 0.0 && plan.bounds.vv == 0.0;
+      plan.nu = static_cast<int>(flat ? grid.segments_u : std::max<std::int64_t>(grid.segments_u, 2));
+      plan.nv = static_cast<int>(flat ? grid.segments_v : std::max<std::int64_t>(grid.segments_v, 2));
+      if (plan.culled) {
+        ++culled_;
+        culled_triangles_ += 2 * grid.segments_u * grid.segments_v;
+      }
+    }
+  }
+
+  double surface_diagonal() const {
+    Eigen::AlignedBox3d box;
+    for (const BezierPatch3& patch : patches_) box.extend(bounding_box(patch, 1e-6 * set_.size()));
+    return box.diagonal().norm();
+  }
+
+  // Classes for every edge of every patch that is tessellated: a shared edge whose two patches
+  // are both tessellated is one class; every other edge is its own.
+  void build_edge_classes() {
+    const auto add_class = [&](std::uint32_t owner, bool collapsed) {
+      classes_.push_back({owner, collapsed, 1, no_id});
+      return static_cast<std::uint32_t>(classes_.size() - 1);
+    };
+    for (const SharedEdge& shared : set_.shared_edges()) {
+      const EdgeRef a = shared.first;
+      const EdgeRef b = shared.second;
+      if (plans_[a.patch].culled || plans_[b.patch].culled) continue;
+      // An edge paired twice (three patches on one edge) keeps its first pairing.
+      if (slots_[a.patch][static_cast<int>(a.edge)].edge_class != no_id ||
+          slots_[b.patch][static_cast<int>(b.edge)].edge_class != no_id) {
+        continue;
+      }
+      const std::uint32_t c = add_class(a.patch, false);
+      slots_[a.patch][static_cast<int>(a.edge)] = {c, false};
+      slots_[b.patch][static_cast<int>(b.edge)] = {c, shared.reversed};
+    }
+    std::vector<std::array<bool, 4>> collapsed(patches_.size(), {false, false, false, false});
+    for (const EdgeRef& e : set_.collapsed_edges()) collapsed[e.patch][static_cast<int>(e.edge)] = true;
+    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+      if (plans_[p].culled) continue;
+      for (int k = 0; k < 4; ++k) {
+        if (slots_[p][k].edge_class == no_id) slots_[p][k] = {add_class(p, collapsed[p][k]), false};
+      }
+    }
+    update_edge_rates();
+  }
+
+  // A class's rate is the largest rate any of its patches needs along it; a collapsed edge
+  // follows its patch's inner rate, so its triangles fan evenly into the pole.
+  void update_edge_rates() {
+    for (EdgeClass& c : classes_) c.rate = 1;
+    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+      if (plans_[p].culled) continue;
+      for (int k = 0; k < 4; ++k) {
+        EdgeClass& c = classes_[slots_[p][k].edge_class];
+        c.rate = std::max(c.rate, along(k, plans_[p].nu, plans_[p].nv));
+      }
+    }
+  }
+
+  PatternRates rates(std::uint32_t p) const {
+    PatternRates r{plans_[p].nu, plans_[p].nv, {}};
+    for (int k = 0; k < 4; ++k) r.edges[k] = classes_[slots_[p][k].edge_class].rate;
+    return r;
+  }
+
+  // Stitched triangles can reach further than grid cells; raise the inner rates of any patch
+  // whose worst triangle exceeds its tolerance until none does (rates only grow, so this ends).
+  void raise_rates_to_bounds() {
+    for (int round = 0; round < 64; ++round) {
+      bool raised = false;
+      for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+        PatchPlan& plan = plans_[p];
+        if (plan.culled) continue;
+        const TessellationPattern pattern = make_pattern(rates(p));
+        const InnerGrid inner = inner_grid(rates(p));
+        const int nu = inner.u;
+        const int nv = inner.v;
+        if (pattern_bound(pattern, plan.bounds, nu, nv) <= plan.tolerance) continue;
+        // Raise the direction that contributes more to the cell bound.
+        if (plan.bounds.uu / (nu * nu) >= plan.bounds.vv / (nv * nv)) {
+          plan.nu = nu + std::max(1, nu / 8);
+        } else {
+          plan.nv = nv + std::max(1, nv / 8);
+        }
+        raised = true;
+      }
+      if (!raised) return;
+      update_edge_rates();
+    }
+    throw NumericalError("tessellate: the stitched rates did not settle within 64 rounds");
+  }
+
+  void check_triangle_budget() const {
+    double triangles = 0.0;
+    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+      if (plans_[p].culled) continue;
+      const PatternRates r = rates(p);
+      triangles += 2.0 * std::max(r.inner_u, 2) * std::max(r.inner_v, 2) + r.edges[0] + r.edges[1] + r.edges[2] +
+                   r.edges[3];
+    }
+    if (triangles > static_cast<double>(options_.max_triangles)) {
+      throw InvalidInput(detail::message("tessellate: about ", static_cast<std::int64_t>(triangles),
+                                         " triangles needed, more than the limit of ", options_.max_triangles));
+    }
+  }
+
+  // --- welding ----------------------------------------------------------------------------
+
+  // Corners are one point where shared or collapsed edges join them; then every class's inner
+  // points get a block of ids, then each patch's interior.
+  void number_welded_points() {
+    UnionFind corners(4 * patches_.size());
+    const auto slot = [](std::uint32_t p, int c) { return static_cast<std::uint32_t>(4 * p + c); };
+    for (const SharedEdge& shared : set_.shared_edges()) {
+      const EdgeRef a = shared.first;
+      const EdgeRef b = shared.second;
+      if (plans_[a.patch].culled || plans_[b.patch].culled) continue;
+      const int ka = static_cast<int>(a.edge);
+      const int kb = static_cast<int>(b.edge);
+      corners.unite(slot(a.patch, edge_start[ka]), slot(b.patch, shared.reversed ? edge_end[kb] : edge_start[kb]));
+      corners.unite(slot(a.patch, edge_end[ka]), slot(b.patch, shared.reversed ? edge_start[kb] : edge_end[kb]));
+    }
+    for (const EdgeRef& e : set_.collapsed_edges()) {
+      if (plans_[e.patch].culled) continue;
+      const int k = static_cast<int>(e.edge);
+      corners.unite(slot(e.patch, edge_start[k]), slot(e.patch, edge_end[k]));
+    }
+    corner_ids_.assign(4 * patches_.size(), no_id);
+    corner_owner_.assign(4 * patches_.size(), false);
+    std::uint32_t next = 0;
+    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+      if (plans_[p].culled) continue;
+      for (int c = 0; c < 4; ++c) {
+        const std::uint32_t root = corners.find(slot(p, c));
+        if (corner_ids_[root] == no_id) corner_ids_[root] = next++;
+        corner_ids_[slot(p, c)] = corner_ids_[root];
+        corner_owner_[slot(p, c)] = root == slot(p, c);
+      }
+    }
+    for (EdgeClass& c : classes_) {
+      if (c.collapsed) continue;
+      c.first_id = next;
+      next += static_cast<std::uint32_t>(c.rate - 1);
+    }
+    interior_first_.assign(patches_.size(), no_id);
+    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+      if (plans_[p].culled) continue;
+      const InnerGrid inner = inner_grid(rates(p));
+      interior_first_[p] = next;
+      next += static_cast<std::uint32_t>((inner.u - 1) * (inner.v - 1));
+    }
+    welded_count_ = next;
+  }
+
+  // --- per patch ----------------------------------------------------------------------------
+
+  void tessellate_patch(std::uint32_t p) {
+    const BezierPatch3& patch = patches_[p];
+    PatchOutput& out = outputs_[p];
+    const PatternRates r = rates(p);
+    out.pattern = make_pattern(r);
+    const TessellationPattern& pattern = out.pattern;
+    const InnerGrid inner = inner_grid(r);
+    const int nu = inner.u;
+    const int nv = inner.v;
+    const std::size_t count = pattern.points.size();
+    out.welded.resize(count);
+    out.owner.resize(count);
+    std::uint32_t interior = interior_first_[p];
+    for (std::size_t k = 0; k < count; ++k) {
+      const PatternPoint& point = pattern.points[k];
+      switch (point.kind) {
+        case PatternPoint::Kind::corner:
+          out.welded[k] = corner_ids_[4 * p + point.index];
+          out.owner[k] = corner_owner_[4 * p + point.index];
+          break;
+        case PatternPoint::Kind::edge: {
+          const EdgeSlot& s = slots_[p][point.index];
+          const EdgeClass& c = classes_[s.edge_class];
+          if (c.collapsed) {
+            out.welded[k] = corner_ids_[4 * p + edge_start[point.index]];
+            out.owner[k] = false;
+          } else {
+            const int step = s.reversed ? c.rate - point.step : point.step;
+            out.welded[k] = c.first_id + static_cast<std::uint32_t>(step - 1);
+            out.owner[k] = c.owner == p;
+          }
+          break;
+        }
+        case PatternPoint::Kind::interior:
+          out.welded[k] = interior++;
+          out.owner[k] = true;
+          break;
+      }
+    }
+    evaluate(patch, r, nu, nv, out);
+    for (const Triangle& t : pattern.triangles) {
+      const bool degenerate =
+          out.welded[t[0]] == out.welded[t[1]] || out.welded[t[1]] == out.welded[t[2]] || out.welded[t[0]] == out.welded[t[2]];
+      (degenerate ? out.dropped : out.kept).push_back(t);
+    }
+    out.bound = pattern_bound(pattern, plans_[p].bounds, nu, nv);
+    if (options_.optimize && !out.kept.empty()) {
+      std::vector<Triangle> reordered(out.kept.size());
+      meshopt_optimizeVertexCache(reordered.front().data(), out.kept.front().data(), 3 * out.kept.size(), count);
+      out.kept = std::move(reordered);
+    }
+  }
+
+  // Positions, normals (and tangents) of every pattern point: the interior as one grid, each
+  // side (with its corners) as a one-row grid.
+  void evaluate(const BezierPatch3& patch, const PatternRates& r, int nu, int nv, PatchOutput& out) const {
+    const std::size_t count = out.pattern.points.size();
+    out.positions.resize(count);
+    out.normals.resize(count);
+    if (options_.tangents) out.tangents.resize(count);
+    const int n = patch.degree_u();
+    const int m = patch.degree_v();
+    const auto store = [&](const PatchGridSamples& samples, std::size_t sample, std::uint32_t point) {
+      out.positions[point] = samples.points[sample];
+      out.normals[point] = samples.normals[sample];
+      if (options_.tangents) out.tangents[point] = samples.tangents[sample];
+    };
+    const auto ramp = [](int from, int to, int rate) {
+      std::vector<double> ts;
+      for (int k = from; k <= to; ++k) ts.push_back(static_cast<double>(k) / rate);
+      return ts;
+    };
+    // Sides v0 and v1 with their corners; sides u1 and u0 without.
+    for (int k = 0; k < 4; ++k) {
+      const int e = r.edges[k];
+      const bool along_u = k % 2 == 0;
+      const std::vector<double> ts = along_u ? ramp(0, e, e) : ramp(1, e - 1, e);
+      if (ts.empty()) continue;
+      const std::vector<double> fixed = {k == 1 || k == 2 ? 1.0 : 0.0};
+      const PatchGridWeights weights = along_u ? PatchGridWeights(n, m, ts, fixed) : PatchGridWeights(n, m, fixed, ts);
+      const PatchGridSamples samples = evaluate_grid(patch, weights, options_.tangents);
+      const std::uint32_t first = first_edge_point(r, k);
+      for (std::size_t s = 0; s < ts.size(); ++s) {
+        std::uint32_t point;
+        if (!along_u) {
+          point = first + static_cast<std::uint32_t>(s);
+        } else if (s == 0) {
+          point = k == 0 ? 0u : 3u;
+        } else if (s + 1 == ts.size()) {
+          point = k == 0 ? 1u : 2u;
+        } else {
+          point = first + static_cast<std::uint32_t>(s - 1);
+        }
+        store(samples, s, point);
+      }
+    }
+    if (nu < 2 || nv < 2) return;
+    const PatchGridWeights weights(n, m, ramp(1, nu - 1, nu), ramp(1, nv - 1, nv));
+    const PatchGridSamples samples = evaluate_grid(patch, weights, options_.tangents);
+    const std::uint32_t first = first_edge_point(r, 3) + static_cast<std::uint32_t>(r.edges[3] - 1);
+    for (std::size_t s = 0; s < samples.points.size(); ++s) store(samples, s, first + static_cast<std::uint32_t>(s));
+  }
+
+  // --- assembly -----------------------------------------------------------------------------
+
+  Vec2 uv_of(std::uint32_t p, const Vec2& uv) const {
+    if (options_.uv != UvMode::atlas) return uv;
+    // Patches in a grid of equal cells, each inset by a gutter of 2% of the cell.
+    const auto columns = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(patches_.size()))));
+    const std::size_t rows = (patches_.size() + columns - 1) / columns;
+    const Vec2 cell(1.0 / static_cast<double>(columns), 1.0 / static_cast<double>(rows));
+    const Vec2 origin(static_cast<double>(p % columns) * cell.x(), static_cast<double>(p / columns) * cell.y());
+    return origin + 0.02 * cell + 0.96 * uv.cwiseProduct(cell);
+  }
+
+  Tessellation assemble() {
+    Tessellation result;
+    result.culled_patches = culled_;
+    result.culled_triangles = culled_triangles_;
+    std::vector<Vec3> welded_positions(welded_count_, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    for (const PatchOutput& out : outputs_) {
+      for (std::size_t k = 0; k < out.welded.size(); ++k) {
+        if (out.owner[k]) welded_positions[out.welded[k]] = out.positions[k];
+      }
+    }
+    RenderMesh& mesh = result.mesh;
+    // Render vertices of one welded point, chained: first_vertex[id] -> next_vertex[...] -> ...
+    std::vector<std::uint32_t> first_vertex(welded_count_, no_id);
+    std::vector<std::uint32_t> next_vertex;
+    std::vector<std::uint32_t> dense_position(welded_count_, no_id);
+    std::uint32_t positions_used = 0;
+    const double cos_crease = std::cos(options_.crease_angle);
+    const bool with_uv = options_.uv != UvMode::none;
+    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+      if (plans_[p].culled) continue;
+      const PatchOutput& out = outputs_[p];
+      result.error_bound = std::max(result.error_bound, out.bound);
+      result.tolerance = std::max(result.tolerance, plans_[p].tolerance);
+      std::vector<std::uint32_t> vertex_of(out.welded.size(), no_id);
+      const auto vertex = [&](std::uint32_t k) {
+        if (vertex_of[k] != no_id) return vertex_of[k];
+        const std::uint32_t id = out.welded[k];
+        const Vec2 uv = uv_of(p, out.pattern.points[k].uv);
+        for (std::uint32_t v = first_vertex[id]; v != no_id; v = next_vertex[v]) {
+          const bool same = mesh.normals[v].dot(out.normals[k]) >= cos_crease && (!with_uv || mesh.uvs[v] == uv) &&
+                            (!options_.tangents || (mesh.tangents[v].w() == out.tangents[k].w() &&
+                                                    mesh.tangents[v].head<3>().dot(out.tangents[k].head<3>()) >= cos_crease));
+          if (same) return vertex_of[k] = v;
+        }
+        const auto v = static_cast<std::uint32_t>(mesh.positions.size());
+        mesh.positions.push_back(welded_positions[id]);
+        mesh.normals.push_back(out.normals[k]);
+        if (with_uv) mesh.uvs.push_back(uv);
+        if (options_.tangents) mesh.tangents.push_back(out.tangents[k]);
+        if (dense_position[id] == no_id) dense_position[id] = positions_used++;
+        mesh.position_ids.push_back(dense_position[id]);
+        next_vertex.push_back(first_vertex[id]);
+        first_vertex[id] = v;
+        return vertex_of[k] = v;
+      };
+      for (const Triangle& t : out.kept) {
+        for (std::uint32_t corner : t) mesh.indices.push_back(vertex(corner));
+        result.triangle_patches.push_back(p);
+      }
+    }
+    result.welded_vertices = positions_used;
+    welded_positions_ = std::move(welded_positions);
+    return result;
+  }
+
+  // --- measurement --------------------------------------------------------------------------
+
+  // e_par: |S(u,v) - L(u,v)| at the corners, edge midpoints, centroid and three inner points of
+  // every parameter triangle, L the linear interpolant of the mesh positions.
+  double measure() const {
+    static constexpr std::array<std::array<double, 3>, 10> samples = {{{1, 0, 0},
+                                                                      {0, 1, 0},
+                                                                      {0, 0, 1},
+                                                                      {0.5, 0.5, 0},
+                                                                      {0, 0.5, 0.5},
+                                                                      {0.5, 0, 0.5},
+                                                                      {1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                                                      {2.0 / 3, 1.0 / 6, 1.0 / 6},
+                                                                      {1.0 / 6, 2.0 / 3, 1.0 / 6},
+                                                                      {1.0 / 6, 1.0 / 6, 2.0 / 3}}};
+    std::vector<std::uint32_t> tessellated;
+    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+      if (!plans_[p].culled) tessellated.push_back(p);
+    }
+    std::vector<double> errors(tessellated.size(), 0.0);
+    parallel_for(tessellated.size(), options_.threads, [&](std::size_t q) {
+      const std::uint32_t p = tessellated[q];
+      const PatchOutput& out = outputs_[p];
+      double error = 0.0;
+      for (const auto* list : {&out.kept, &out.dropped}) {
+        for (const Triangle& t : *list) {
+          for (const auto& w : samples) {
+            Vec2 uv = Vec2::Zero();
+            Vec3 linear = Vec3::Zero();
+            for (int c = 0; c < 3; ++c) {
+              uv += w[c] * out.pattern.points[t[c]].uv;
+              linear += w[c] * welded_positions_[out.welded[t[c]]];
+            }
+            error = std::max(error, (patches_[p].evaluate(uv.x(), uv.y()) - linear).norm());
+          }
+        }
+      }
+      errors[q] = error;
+    });
+    return errors.empty() ? 0.0 : *std::max_element(errors.begin(), errors.end());
+  }
+
+  // Vertices in order of first use by the (cache-ordered) triangles.
+  static void optimize_vertex_fetch(RenderMesh& mesh) {
+    if (mesh.indices.empty()) return;
+    std::vector<unsigned int> remap(mesh.vertex_count());
+    const std::size_t used =
+        meshopt_optimizeVertexFetchRemap(remap.data(), mesh.indices.data(), mesh.indices.size(), mesh.vertex_count());
+    const auto apply = [&](auto& attribute) {
+      if (attribute.empty()) return;
+      std::remove_reference_t<decltype(attribute)> reordered(used);
+      for (std::size_t v = 0; v < attribute.size(); ++v) {
+        if (remap[v] != ~0u) reordered[remap[v]] = attribute[v];
+      }
+      attribute = std::move(reordered);
+    };
+    apply(mesh.positions);
+    apply(mesh.normals);
+    apply(mesh.uvs);
+    apply(mesh.tangents);
+    apply(mesh.position_ids);
+    for (std::uint32_t& index : mesh.indices) index = remap[index];
+    // Position ids renumbered densely in the new vertex order.
+    std::vector<std::uint32_t> dense(mesh.vertex_count(), no_id);
+    std::uint32_t next = 0;
+    for (std::uint32_t& id : mesh.position_ids) {
+      if (dense[id] == no_id) dense[id] = next++;
+      id = dense[id];
+    }
+  }
+
+  const PatchSet& set_;
+  const TessellationOptions& options_;
+  const std::vector<BezierPatch3>& patches_;
+  std::vector<PatchPlan> plans_;
+  std::vector<std::array<EdgeSlot, 4>> slots_;
+  std::vector<EdgeClass> classes_;
+  std::vector<std::uint32_t> corner_ids_;
+  std::vector<bool> corner_owner_;
+  std::vector<std::uint32_t> interior_first_;
+  std::uint32_t welded_count_ = 0;
+  std::vector<PatchOutput> outputs_;
+  std::vector<Vec3> welded_positions_;
+  std::size_t culled_ = 0;
+  std::int64_t culled_triangles_ = 0;
+};
+
+}  // namespace
+
+Tessellation tessellate(const PatchSet& set, const TessellationOptions& options) {
+  return Tessellator(set, options).run();
+}
+
+}  // namespace patchwork

@@ -1,0 +1,101 @@
+#pragma once
+// Patch sets to render-ready triangle meshes within a guaranteed error.
+//
+// Rates. For a tolerance eps every patch gets the smallest grid (N_u, N_v) whose a-priori bound
+// (surfaces/patch_flatness.h, Filip-Magedson-Markot) is <= eps; a shared edge gets one rate, the
+// larger of its two sides, and a patch whose edge rate differs from its inner rate is stitched
+// to it (surfaces/tessellation_pattern.h). The bound of every triangle, stitched ones included, is
+// computed (triangle_flatness_bound) and the rates are raised until all are <= eps, so
+//   |S(u, v) - L(u, v)| <= eps   on every triangle,
+// L the mesh point with the same parameters: every mesh point is within eps of the surface and
+// every surface point within eps of the mesh. The measured error e_par (the same distance sampled
+// at each triangle's corners, edge midpoints and interior points) is reported beside it.
+//
+// A curved patch gets at least two segments per direction, so that coarse tolerances keep the
+// topology (a tube of two patches does not flatten).
+//
+// Welding. Patches that share an edge (PatchSet) share its points: corners are joined through
+// shared and collapsed edges, a shared edge is evaluated once, by its first patch, and a
+// collapsed edge (the teapot's poles) is one point, evaluated exactly (a control point), with
+// the patch's limit normal; triangles that would use it twice are not emitted. Patches that only
+// touch at a point (the teapot's handle on its body) keep separate vertices there, so the mesh
+// stays manifold and its topology is the patch set's.
+//
+// Render vertices. Normals are the exact unit normals of each patch (the limit normal where
+// F_u x F_v vanishes), oriented like F_u x F_v and so like the triangles, which are
+// counter-clockwise in (u, v). A welded point becomes several vertices only where its attributes
+// differ between the patches around it: normals more than `crease_angle` apart, different UVs
+// (patch UVs jump at every patch edge), tangents more than crease_angle apart.
+// RenderMesh::position_ids keeps the welding. Indices are reordered for the vertex cache and
+// vertex fetch (meshoptimizer). Work is parallel over patches; the output does not depend on the
+// thread count.
+//
+// Culling. With a camera, each patch gets its tolerance from its nearest depth and patches
+// outside the frustum or facing away are not tessellated (surfaces/view_culling.h).
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/types.h"
+#include "meshes/render_mesh.h"
+#include "surfaces/patch_set.h"
+#include "surfaces/view_culling.h"
+
+namespace patchwork {
+
+/// How the UVs are made.
+enum class UvMode { none, patch, atlas };
+
+struct TessellationOptions {
+  /// Exactly one of tolerance, relative_tolerance, segments and camera (with pixel_tolerance).
+  /// Absolute tolerance, model units.
+  std::optional<double> tolerance;
+  /// Tolerance as a fraction of the diagonal of the box of all control points.
+  std::optional<double> relative_tolerance;
+  /// Uniform N x N grid per patch (no error target; the bound is still computed).
+  std::optional<int> segments;
+  /// View-dependent tolerance and culling.
+  std::optional<Camera> camera;
+  /// Tolerance in pixels for the camera mode.
+  double pixel_tolerance = 0.5;
+
+  /// Normals (and tangents) further apart than this, radians, split a vertex.
+  double crease_angle = 0.0174532925199432958;  // 1 degree
+  UvMode uv = UvMode::patch;
+  bool tangents = false;
+  /// Threads; 0 = all cores.
+  int threads = 0;
+  /// Sample every triangle to report the measured error.
+  bool measure = true;
+  /// Reorder for the vertex cache and vertex fetch.
+  bool optimize = true;
+  /// Refuse (InvalidInput naming the count) above this many triangles.
+  std::int64_t max_triangles = 100'000'000;
+};
+
+struct Tessellation {
+  RenderMesh mesh;
+  /// The patch each triangle belongs to.
+  std::vector<std::uint32_t> triangle_patches;
+  /// The absolute tolerance used (for a camera: the largest over the patches).
+  double tolerance = 0.0;
+  /// Max over triangles of the a-priori bound on |S - L|.
+  double error_bound = 0.0;
+  /// Max over triangles of the sampled |S - L| (0 if not measured).
+  double measured_error = 0.0;
+  /// Patches not tessellated by frustum or back-face culling.
+  std::size_t culled_patches = 0;
+  /// Triangles those patches would have had at their tolerance.
+  std::int64_t culled_triangles = 0;
+  /// Welded points (distinct position ids).
+  std::size_t welded_vertices = 0;
+};
+
+/// Tessellates `set` (see the file comment).
+/// \throws InvalidInput if the options do not name exactly one of the modes, a tolerance is not
+///         positive and finite, segments < 1, the camera is malformed, or the triangle count would
+///         exceed max_triangles (the message gives the count).
+Tessellation tessellate(const PatchSet& set, const TessellationOptions& options);
+
+}  // namespace patchwork

@@ -1,0 +1,293 @@
+#include "surfaces/tessellator.h"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "core/errors.h"
+#include "io/bpt.h"
+#include "meshes/topology.h"
+#include "tests/surfaces/patch_fixtures.h"
+
+namespace patchwork {
+namespace {
+
+const PatchSet& teapot() {
+  static const PatchSet set(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"));
+  return set;
+}
+
+TessellationOptions relative(double r) {
+  TessellationOptions options;
+  options.relative_tolerance = r;
+  return options;
+}
+
+double triangle_area(const RenderMesh& mesh, std::size_t t) {
+  const Vec3& a = mesh.positions[mesh.indices[3 * t]];
+  const Vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+  const Vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+// Distance from p to the boundary curve of an edge (dense samples, then golden-section refinement).
+double distance_to_edge(const BezierPatch3& patch, PatchEdge edge, const Vec3& p) {
+  const BezierCurve<3> curve = boundary_curve(patch, edge);
+  constexpr int samples = 256;
+  int best = 0;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= samples; ++k) {
+    const double d = (curve.evaluate(static_cast<double>(k) / samples) - p).norm();
+    if (d < best_distance) best_distance = d, best = k;
+  }
+  double lo = std::max(0.0, (best - 1.0) / samples), hi = std::min(1.0, (best + 1.0) / samples);
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const double a = lo + (hi - lo) * 0.381966, b = hi - (hi - lo) * 0.381966;
+    if ((curve.evaluate(a) - p).norm() < (curve.evaluate(b) - p).norm()) {
+      hi = b;
+    } else {
+      lo = a;
+    }
+  }
+  return std::min(best_distance, (curve.evaluate(0.5 * (lo + hi)) - p).norm());
+}
+
+// Welded, crack-free and render-ready: the checks every tessellation must pass.
+// At coarse tolerances a chord triangle may tilt away from the normals at its corners (a patch
+// cut into 2 x 2 cells at 1e-1); with check_winding the winding must agree with them.
+void expect_render_ready(const PatchSet& set, const Tessellation& result, double tolerance,
+                         bool check_winding = true) {
+  const RenderMesh& mesh = result.mesh;
+  ASSERT_NO_THROW(validate(mesh));
+  EXPECT_LE(result.error_bound, tolerance);
+  EXPECT_LE(result.measured_error, result.error_bound * (1 + 1e-9) + 1e-12 * set.size());
+  EXPECT_EQ(result.triangle_patches.size(), mesh.triangle_count());
+  const double scale = set.size();
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    // No degenerate triangle, and the winding agrees with the exact normals.
+    ASSERT_GT(triangle_area(mesh, t), 1e-12 * scale * scale) << "triangle " << t;
+    const Vec3& a = mesh.positions[mesh.indices[3 * t]];
+    const Vec3 geometric = (mesh.positions[mesh.indices[3 * t + 1]] - a).cross(mesh.positions[mesh.indices[3 * t + 2]] - a);
+    Vec3 average = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) average += mesh.normals[mesh.indices[3 * t + k]];
+    if (check_winding) {
+      ASSERT_GT(geometric.dot(average), 0.0) << "triangle " << t;
+    }
+  }
+  // The welded mesh is a manifold whose boundary lies on the patch set's open edges only.
+  const FaceVertexMesh welded = welded_faces(mesh);
+  const TopologyReport report = analyze(welded);
+  EXPECT_TRUE(report.manifold);
+  EXPECT_TRUE(report.orientable);
+  EXPECT_EQ(static_cast<std::size_t>(report.boundary_loops), set.boundary_loops().size());
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (std::size_t f = 0; f < welded.face_count(); ++f) {
+    const auto face = welded.face(f);
+    for (int k = 0; k < 3; ++k) ++uses[std::minmax(face[k], face[(k + 1) % 3])];
+  }
+  for (const auto& [edge, count] : uses) {
+    if (count != 1) continue;
+    for (std::uint32_t v : {edge.first, edge.second}) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const EdgeRef& open : set.open_edges()) {
+        nearest = std::min(nearest, distance_to_edge(set.patches()[open.patch], open.edge, welded.position(v)));
+      }
+      ASSERT_LT(nearest, 1e-9 * scale) << "boundary vertex " << v << " is not on an open edge";
+    }
+  }
+}
+
+class TeapotTessellation : public ::testing::TestWithParam<double> {};
+
+TEST_P(TeapotTessellation, IsWatertightWithinItsToleranceWithThePatchSetsTopology) {
+  const Tessellation result = tessellate(teapot(), relative(GetParam()));
+  expect_render_ready(teapot(), result, result.tolerance, GetParam() <= 1e-2);
+  // 4 face-connected components (body, lid, handle, spout), 6 boundary loops, each component
+  // a sphere with holes (genus 0); the handle touches the body at one point, which keeps two
+  // vertices, so the mesh stays manifold there.
+  const TopologyReport report = analyze(welded_faces(result.mesh));
+  EXPECT_EQ(report.components, 4);
+  EXPECT_EQ(report.boundary_loops, 6);
+  EXPECT_EQ(report.genus, 0);
+  EXPECT_NEAR(result.tolerance, GetParam() * 8.2048659851356535, 1e-9 * GetParam());
+}
+
+// 1e-5 takes 1.5 M triangles: too slow for the sanitizer build, where 1e-1 .. 1e-4 run.
+#ifdef PATCHWORK_ENABLE_ASSERTS
+INSTANTIATE_TEST_SUITE_P(Tolerances, TeapotTessellation, ::testing::Values(1e-1, 1e-2, 1e-3, 1e-4));
+#else
+INSTANTIATE_TEST_SUITE_P(Tolerances, TeapotTessellation, ::testing::Values(1e-1, 1e-2, 1e-3, 1e-4, 1e-5));
+#endif
+
+TEST(Tessellator, UniformSegmentsGiveTheClassicCount) {
+  TessellationOptions options;
+  options.segments = 16;
+  const Tessellation result = tessellate(teapot(), options);
+  // 32 patches of 16 x 16 cells, 2 triangles each, less one triangle per cell at the 8 collapsed
+  // edges (16 cells each).
+  EXPECT_EQ(result.mesh.triangle_count(), 32u * 16 * 16 * 2 - 8u * 16);
+  expect_render_ready(teapot(), result, result.error_bound);
+}
+
+TEST(Tessellator, PolesAreOneVertexWithTheExactLimitNormal) {
+  TessellationOptions options = relative(1e-3);
+  options.uv = UvMode::none;
+  const Tessellation result = tessellate(teapot(), options);
+  const RenderMesh& mesh = result.mesh;
+  // The lid's top (0, 0, 3.15) and the bottom's centre (0, 0, 0).
+  for (const auto& [pole, normal] : {std::pair{Vec3(0, 0, 3.15), Vec3(0, 0, 1)}, std::pair{Vec3(0, 0, 0), Vec3(0, 0, -1)}}) {
+    std::set<std::uint32_t> ids;
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      if ((mesh.positions[v] - pole).norm() > 1e-12) continue;
+      ids.insert(mesh.position_ids[v]);
+      EXPECT_LT((mesh.normals[v] - normal).norm(), 1e-12) << "at " << pole.transpose();
+    }
+    EXPECT_EQ(ids.size(), 1u) << "at " << pole.transpose();
+  }
+  // All teapot edges are G1, so without UVs no vertex is split: one vertex per welded point.
+  EXPECT_EQ(mesh.vertex_count(), result.welded_vertices);
+}
+
+TEST(Tessellator, OutputDoesNotDependOnTheThreadCount) {
+  TessellationOptions options = relative(1e-3);
+  options.tangents = true;
+  options.threads = 1;
+  const Tessellation one = tessellate(teapot(), options);
+  options.threads = 2;
+  const Tessellation two = tessellate(teapot(), options);
+  EXPECT_EQ(one.mesh.indices, two.mesh.indices);
+  EXPECT_EQ(one.mesh.positions, two.mesh.positions);
+  EXPECT_EQ(one.mesh.normals, two.mesh.normals);
+  EXPECT_EQ(one.mesh.uvs, two.mesh.uvs);
+  EXPECT_EQ(one.mesh.tangents, two.mesh.tangents);
+  EXPECT_EQ(one.mesh.position_ids, two.mesh.position_ids);
+  EXPECT_EQ(one.measured_error, two.measured_error);
+}
+
+TEST(Tessellator, TangentsAreUnitOrthogonalAndRightHanded) {
+  TessellationOptions options = relative(1e-2);
+  options.tangents = true;
+  const Tessellation result = tessellate(teapot(), options);
+  const RenderMesh& mesh = result.mesh;
+  ASSERT_EQ(mesh.tangents.size(), mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    EXPECT_NEAR(mesh.tangents[v].head<3>().norm(), 1.0, 1e-12);
+    EXPECT_NEAR(mesh.tangents[v].head<3>().dot(mesh.normals[v]), 0.0, 1e-9);
+    // The teapot's patches are regular away from the poles, where the limit frame is kept
+    // right-handed too: w = +1 everywhere.
+    EXPECT_EQ(mesh.tangents[v].w(), 1.0);
+  }
+}
+
+TEST(Tessellator, UvsArePatchParametersOrAnAtlasInTheUnitSquare) {
+  for (UvMode mode : {UvMode::patch, UvMode::atlas}) {
+    TessellationOptions options = relative(1e-2);
+    options.uv = mode;
+    const Tessellation result = tessellate(teapot(), options);
+    ASSERT_EQ(result.mesh.uvs.size(), result.mesh.vertex_count());
+    for (const Vec2& uv : result.mesh.uvs) {
+      EXPECT_TRUE(uv.minCoeff() >= 0.0 && uv.maxCoeff() <= 1.0);
+    }
+  }
+  // In the atlas, the patches' cells do not overlap: each triangle's uvs lie in one cell.
+  TessellationOptions options = relative(1e-2);
+  options.uv = UvMode::atlas;
+  const Tessellation result = tessellate(teapot(), options);
+  for (std::size_t t = 0; t < result.mesh.triangle_count(); ++t) {
+    const std::uint32_t p = result.triangle_patches[t];
+    const Vec2 cell_origin((p % 6) / 6.0, (p / 6) / 6.0);
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 local = (result.mesh.uvs[result.mesh.indices[3 * t + k]] - cell_origin) * 6.0;
+      EXPECT_TRUE(local.minCoeff() >= 0.0199 && local.maxCoeff() <= 0.9801) << "triangle " << t;
+    }
+  }
+}
+
+TEST(Tessellator, BadOptionsAreRejected) {
+  const PatchSet& set = teapot();
+  for (double bad : {0.0, -1e-3, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    EXPECT_THROW(tessellate(set, relative(bad)), InvalidInput);
+    TessellationOptions options;
+    options.tolerance = bad;
+    EXPECT_THROW(tessellate(set, options), InvalidInput);
+  }
+  TessellationOptions none;
+  EXPECT_THROW(tessellate(set, none), InvalidInput);
+  TessellationOptions two = relative(1e-3);
+  two.segments = 4;
+  EXPECT_THROW(tessellate(set, two), InvalidInput);
+  TessellationOptions zero;
+  zero.segments = 0;
+  EXPECT_THROW(tessellate(set, zero), InvalidInput);
+  TessellationOptions too_many = relative(1e-6);
+  too_many.max_triangles = 1'000'000;
+  try {
+    tessellate(set, too_many);
+    ADD_FAILURE() << "no exception";
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("triangles needed"), std::string::npos) << error.what();
+  }
+}
+
+// A creased patch set: two flat squares at a right angle share an edge; the normals differ by
+// 90 degrees, so the shared points are split for rendering but stay one welded point.
+TEST(Tessellator, CreasesSplitVerticesButStayWelded) {
+  const BezierPatch3 floor = testing::bilinear(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0));
+  const BezierPatch3 wall = testing::bilinear(Vec3(0, 1, 0), Vec3(1, 1, 0), Vec3(0, 1, 1), Vec3(1, 1, 1));
+  const PatchSet set({floor, wall});
+  TessellationOptions options;
+  options.segments = 3;
+  options.uv = UvMode::none;
+  const Tessellation result = tessellate(set, options);
+  EXPECT_EQ(result.welded_vertices, 4u * 7);
+  EXPECT_EQ(result.mesh.vertex_count(), 4u * 8);
+  const TopologyReport report = analyze(welded_faces(result.mesh));
+  EXPECT_EQ(report.components, 1);
+  EXPECT_EQ(report.boundary_loops, 1);
+  EXPECT_TRUE(report.manifold);
+}
+
+// Random patches and random C0-joined grids of patches, at random tolerances.
+RC_GTEST_PROP(Tessellator, RandomPatchSetsAreCrackFreeWithinTolerance, ()) {
+  const int degree = *rc::gen::inRange(1, 6);
+  const int rows = *rc::gen::inRange(1, 3);
+  const int columns = *rc::gen::inRange(1, 3);
+  // One global net of (degree*columns + 1) x (degree*rows + 1) points over a wavy height field,
+  // cut into patches that share their boundary rows: C0 joins.
+  const int width = degree * columns + 1;
+  const int height = degree * rows + 1;
+  std::vector<Vec3> net;
+  for (int j = 0; j < height; ++j) {
+    for (int i = 0; i < width; ++i) {
+      net.emplace_back(i + *testing::coordinate(-0.3, 0.3), j + *testing::coordinate(-0.3, 0.3),
+                       *testing::coordinate(-2, 2));
+    }
+  }
+  std::vector<BezierPatch3> patches;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < columns; ++c) {
+      std::vector<Vec3> points;
+      for (int j = 0; j <= degree; ++j) {
+        for (int i = 0; i <= degree; ++i) points.push_back(net[(c * degree + i) + width * (r * degree + j)]);
+      }
+      patches.emplace_back(degree, degree, std::move(points));
+    }
+  }
+  const PatchSet set(std::move(patches));
+  const double r = *rc::gen::element(3e-2, 1e-2, 3e-3);
+  const Tessellation result = tessellate(set, relative(r));
+  RC_ASSERT(result.error_bound <= result.tolerance);
+  RC_ASSERT(result.measured_error <= result.error_bound * (1 + 1e-9) + 1e-12 * set.size());
+  const TopologyReport report = analyze(welded_faces(result.mesh));
+  RC_ASSERT(report.manifold);
+  RC_ASSERT(report.components == 1);
+  RC_ASSERT(report.boundary_loops == 1);
+  RC_ASSERT(report.euler == 1);
+}
+
+}  // namespace
+}  // namespace patchwork
