@@ -1,38 +1,54 @@
 #include "meshes/edge_list_mesh.h"
 
-#include <algorithm>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "core/errors.h"
+#include "meshes/edge_table.h"
 
 namespace patchwork {
 
 EdgeListMesh::EdgeListMesh(const FaceVertexMesh& mesh) : positions_(mesh.positions()) {
-  std::unordered_map<std::uint64_t, std::uint32_t> edge_of;
-  edge_of.reserve(mesh.face_indices().size());
+  const detail::EdgeTable table(mesh);
+  const std::vector<std::uint32_t>& index = mesh.face_indices();
+  // Each edge's left and right face from its uses in corner order. The first corner (of all)
+  // that walks an edge in a direction another face already walks it in is the error.
+  constexpr std::uint32_t none = 0xffffffffu;
+  struct Conflict {
+    std::uint32_t corner = none;
+    std::uint32_t face = none;
+    FaceId earlier;
+    bool both_sides = false;
+  } conflict;
+  left_.assign(table.edge_count(), FaceId());
+  right_.assign(table.edge_count(), FaceId());
+  for (std::size_t e = 0; e < table.edge_count(); ++e) {
+    const std::uint32_t from = index[table.first_use(e)];
+    for (const detail::EdgeUse use : table.uses(e)) {
+      FaceId& side = index[use.corner] == from ? left_[e] : right_[e];
+      if (side.valid()) {
+        if (use.corner < conflict.corner) conflict = {use.corner, use.face, side, left_[e].valid() && right_[e].valid()};
+        break;
+      }
+      side = FaceId(use.face);
+    }
+  }
+  if (conflict.corner != none) {
+    const std::uint32_t a = index[conflict.corner];
+    const std::uint32_t b = index[table.next_corner(conflict.corner)];
+    throw TopologyError(detail::message("EdgeListMesh: edge (", a, ",", b, ") walked from ", a, " by faces ",
+                                        conflict.earlier.value, " and ", conflict.face,
+                                        (conflict.both_sides ? " (and a third face)" : ""),
+                                        ": more than two faces or inconsistent orientation"));
+  }
+  edges_.reserve(table.edge_count());
+  for (std::size_t e = 0; e < table.edge_count(); ++e) {
+    const auto [from, to] = table.vertices(e);
+    edges_.push_back({VertexId(from), VertexId(to)});
+  }
   face_edges_.resize(mesh.face_count());
   for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
-    const auto face = mesh.face(f);
-    for (std::size_t k = 0; k < face.size(); ++k) {
-      const std::uint32_t a = face[k];
-      const std::uint32_t b = face[(k + 1) % face.size()];
-      const std::uint64_t key = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-      const auto [it, inserted] = edge_of.try_emplace(key, static_cast<std::uint32_t>(edges_.size()));
-      if (inserted) {
-        edges_.push_back({VertexId(a), VertexId(b)});
-        left_.emplace_back();
-        right_.emplace_back();
-      }
-      const std::uint32_t e = it->second;
-      FaceId& side = edges_[e][0].value == a ? left_[e] : right_[e];
-      if (side.valid()) {
-        throw TopologyError(detail::message("EdgeListMesh: edge (", a, ",", b, ") walked from ", a, " by faces ", side.value,
-                                            " and ", f, (left_[e].valid() && right_[e].valid() ? " (and a third face)" : ""),
-                                            ": more than two faces or inconsistent orientation"));
-      }
-      side = FaceId(f);
-      face_edges_[f].push_back(EdgeId(e));
+    for (std::size_t c = mesh.first_corner(f); c < mesh.first_corner(f + 1); ++c) {
+      face_edges_[f].push_back(EdgeId(table.edge_of(static_cast<std::uint32_t>(c))));
     }
   }
 }

@@ -1,5 +1,6 @@
 #include "meshes/face_vertex_mesh.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "core/errors.h"
@@ -54,6 +55,14 @@ void FaceVertexMesh::validate() const {
   for (std::uint32_t index : face_indices_) {
     if (index >= static_cast<std::uint64_t>(positions_.rows())) throw std::logic_error("FaceVertexMesh::validate: index out of range");
   }
+}
+
+std::optional<std::uint32_t> detail::repeated_vertex_by_sorting(std::span<const std::uint32_t> face) {
+  std::vector<std::uint32_t> corners(face.begin(), face.end());
+  std::sort(corners.begin(), corners.end());
+  const auto repeated = std::adjacent_find(corners.begin(), corners.end());
+  if (repeated == corners.end()) return std::nullopt;
+  return *repeated;
 }
 
 }  // namespace patchwork

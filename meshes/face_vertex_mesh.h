@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -46,6 +47,9 @@ class FaceVertexMesh {
   std::span<const std::uint32_t> face(std::size_t f) const noexcept {
     return {face_indices_.data() + offsets_[f], face_sizes_[f]};
   }
+  /// The position in face_indices() of face f's first corner; first_corner(face_count()) is the
+  /// number of corners. Corner c of face f is followed by c + 1, the last by first_corner(f).
+  std::size_t first_corner(std::size_t f) const noexcept { return offsets_[f]; }
   /// Position of vertex v.
   Vec3 position(std::size_t v) const { return positions_.row(static_cast<Eigen::Index>(v)).transpose(); }
 
@@ -62,5 +66,22 @@ class FaceVertexMesh {
   std::vector<std::uint32_t> face_indices_;
   std::vector<std::size_t> offsets_;  // offsets_[f] = first index of face f; size F + 1 (also when empty)
 };
+
+namespace detail {
+std::optional<std::uint32_t> repeated_vertex_by_sorting(std::span<const std::uint32_t> face);
+}  // namespace detail
+
+/// The smallest vertex that `face` lists more than once, or nullopt if its corners are distinct.
+inline std::optional<std::uint32_t> repeated_vertex(std::span<const std::uint32_t> face) {
+  // Small faces (nearly all) by comparing every pair, without allocating; large ones sorted.
+  if (face.size() > 16) return detail::repeated_vertex_by_sorting(face);
+  std::optional<std::uint32_t> smallest;
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    for (std::size_t j = k + 1; j < face.size(); ++j) {
+      if (face[k] == face[j] && (!smallest || face[k] < *smallest)) smallest = face[k];
+    }
+  }
+  return smallest;
+}
 
 }  // namespace patchwork

@@ -2,23 +2,12 @@
 
 #include <algorithm>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "core/errors.h"
+#include "meshes/edge_table.h"
 
 namespace patchwork {
 namespace {
-
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-}
-
-// The corners (face, position in face) that use each undirected edge, for error messages.
-struct EdgeUse {
-  std::uint32_t from;
-  std::uint32_t to;
-  std::uint32_t face;
-};
 
 // The faces with a corner at v, ascending, as "3, 8, 12": error messages name them.
 std::string faces_around(const std::vector<VertexId>& origin, const std::vector<FaceId>& face, std::uint32_t v) {
@@ -37,77 +26,65 @@ std::string faces_around(const std::vector<VertexId>& origin, const std::vector<
 HalfedgeMesh::HalfedgeMesh(const FaceVertexMesh& mesh) : positions_(mesh.positions()) {
   const std::size_t faces = mesh.face_count();
   const auto vertices = static_cast<std::uint32_t>(mesh.vertex_count());
-  if (mesh.face_indices().size() >= 0x7fffffffu) {
-    throw TopologyError(detail::message("HalfedgeMesh: ", mesh.face_indices().size(), " corners exceed 32-bit half-edge ids"));
+  const std::vector<std::uint32_t>& index = mesh.face_indices();
+  if (index.size() >= 0x7fffffffu) {
+    throw TopologyError(detail::message("HalfedgeMesh: ", index.size(), " corners exceed 32-bit half-edge ids"));
   }
   // 1. Faces that repeat a vertex.
   for (std::size_t f = 0; f < faces; ++f) {
-    std::vector<std::uint32_t> corners(mesh.face(f).begin(), mesh.face(f).end());
-    std::sort(corners.begin(), corners.end());
-    const auto repeated = std::adjacent_find(corners.begin(), corners.end());
-    if (repeated != corners.end()) {
+    if (const auto repeated = repeated_vertex(mesh.face(f))) {
       throw TopologyError(detail::message("HalfedgeMesh: face ", f, " uses vertex ", *repeated, " more than once"));
     }
   }
   // 2. Edges: each undirected edge may be used at most twice, once in each direction.
-  std::unordered_map<std::uint64_t, std::uint32_t> edge_of;
-  edge_of.reserve(mesh.face_indices().size());
-  std::vector<std::vector<EdgeUse>> uses;
-  std::vector<std::uint32_t> corner_halfedge(mesh.face_indices().size());
-  std::size_t corner = 0;
-  for (std::size_t f = 0; f < faces; ++f) {
-    const auto face = mesh.face(f);
-    for (std::size_t k = 0; k < face.size(); ++k, ++corner) {
-      const std::uint32_t a = face[k];
-      const std::uint32_t b = face[(k + 1) % face.size()];
-      const auto [it, inserted] = edge_of.try_emplace(edge_key(a, b), static_cast<std::uint32_t>(uses.size()));
-      if (inserted) uses.emplace_back();
-      uses[it->second].push_back({a, b, static_cast<std::uint32_t>(f)});
-    }
-  }
-  for (const auto& use : uses) {
-    if (use.size() > 2) {
+  const detail::EdgeTable table(mesh);
+  const std::size_t edges = table.edge_count();
+  for (std::size_t e = 0; e < edges; ++e) {
+    const std::uint32_t first = table.first_use(e);
+    const std::uint32_t second = table.twin(first);
+    if (second == detail::EdgeTable::crowded) {
+      const auto [from, to] = table.vertices(e);
       std::string list;
-      for (const EdgeUse& u : use) list += (list.empty() ? "" : ", ") + std::to_string(u.face);
-      throw TopologyError(detail::message("HalfedgeMesh: edge (", use[0].from, ",", use[0].to, ") used by ", use.size(),
+      for (const detail::EdgeUse use : table.uses(e)) list += (list.empty() ? "" : ", ") + std::to_string(use.face);
+      throw TopologyError(detail::message("HalfedgeMesh: edge (", from, ",", to, ") used by ", table.use_count(e),
                                           " faces (", list, ")"));
     }
-    if (use.size() == 2 && use[0].from == use[1].from) {
-      throw TopologyError(detail::message("HalfedgeMesh: faces ", use[0].face, " and ", use[1].face, " both traverse edge (",
-                                          use[0].from, ",", use[0].to, ") from ", use[0].from,
+    if (second != detail::EdgeTable::none && index[first] == index[second]) {
+      const auto [from, to] = table.vertices(e);
+      throw TopologyError(detail::message("HalfedgeMesh: faces ", table.face_of(first), " and ", table.face_of(second),
+                                          " both traverse edge (", from, ",", to, ") from ", from,
                                           ": inconsistent orientation (or a non-orientable surface)"));
     }
   }
-  // 3. Half-edges: 2e in the direction of the edge's first use, 2e+1 the other way.
-  const std::size_t edges = uses.size();
-  origin_.resize(2 * edges);
-  next_.assign(2 * edges, HalfedgeId());
-  prev_.assign(2 * edges, HalfedgeId());
-  face_.assign(2 * edges, FaceId());
-  for (std::size_t e = 0; e < edges; ++e) {
-    origin_[2 * e] = VertexId(uses[e][0].from);
-    origin_[2 * e + 1] = VertexId(uses[e][0].to);
+  // 3. Half-edges: 2e in the direction of the edge's first use, 2e+1 the other way. Until the
+  // faces are linked, prev_[c] holds corner c's half-edge: scratch in memory the mesh needs
+  // anyway (there are at least as many half-edges as corners), every entry overwritten below.
+  const std::size_t halfedges = 2 * edges;
+  origin_.resize(halfedges);
+  face_.resize(halfedges);
+  next_.resize(halfedges);
+  prev_.resize(halfedges);
+  for (std::uint32_t e = 0; e < edges; ++e) {
+    const std::uint32_t first = table.first_use(e);
+    const std::uint32_t second = table.twin(first);
+    origin_[2 * e] = VertexId(index[first]);
+    origin_[2 * e + 1] = VertexId(index[table.next_corner(first)]);
+    face_[2 * e] = FaceId(table.face_of(first));
+    prev_[first] = HalfedgeId(2 * e);
+    if (second != detail::EdgeTable::none) {
+      face_[2 * e + 1] = FaceId(table.face_of(second));
+      prev_[second] = HalfedgeId(2 * e + 1);
+    }
   }
   face_halfedge_.resize(faces);
-  corner = 0;
   for (std::size_t f = 0; f < faces; ++f) {
-    const auto face = mesh.face(f);
-    const std::size_t first = corner;
-    for (std::size_t k = 0; k < face.size(); ++k, ++corner) {
-      const std::uint32_t a = face[k];
-      const std::uint32_t b = face[(k + 1) % face.size()];
-      const std::uint32_t e = edge_of.at(edge_key(a, b));
-      const std::uint32_t h = 2 * e + (origin_[2 * e].value == a ? 0u : 1u);
-      corner_halfedge[corner] = h;
-      face_[h] = FaceId(static_cast<std::uint32_t>(f));
-    }
-    for (std::size_t k = 0; k < face.size(); ++k) {
-      const std::uint32_t h = corner_halfedge[first + k];
-      const std::uint32_t n = corner_halfedge[first + (k + 1) % face.size()];
-      next_[h] = HalfedgeId(n);
-      prev_[n] = HalfedgeId(h);
-    }
-    face_halfedge_[f] = HalfedgeId(corner_halfedge[first]);
+    const std::size_t first = mesh.first_corner(f), end = mesh.first_corner(f + 1);
+    face_halfedge_[f] = prev_[first];
+    for (std::size_t c = first; c + 1 < end; ++c) next_[prev_[c].index()] = prev_[c + 1];
+    next_[prev_[end - 1].index()] = prev_[first];
+  }
+  for (std::uint32_t h = 0; h < halfedges; ++h) {
+    if (face_[h].valid()) prev_[next_[h].index()] = HalfedgeId(h);
   }
   // 4. Boundary half-edges: each boundary vertex has exactly one outgoing boundary half-edge on
   // a manifold; the one arriving at v continues with it.

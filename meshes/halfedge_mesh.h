@@ -29,7 +29,7 @@ namespace patchwork {
 
 class HalfedgeMesh {
  public:
-  /// Builds from a face list in O(F) expected time.
+  /// Builds from a face list in O(corners + vertices) time.
   /// \throws TopologyError if the faces do not form an oriented 2-manifold with boundary.
   explicit HalfedgeMesh(const FaceVertexMesh& mesh);
 

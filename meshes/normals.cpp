@@ -1,10 +1,9 @@
 #include "meshes/normals.h"
 
 #include <cmath>
-#include <numeric>
-#include <unordered_map>
 
 #include "core/errors.h"
+#include "core/union_find.h"
 #include "meshes/edge_table.h"
 #include "meshes/polygon.h"
 
@@ -42,16 +41,6 @@ Vec3 normalized_or_zero(const Vec3& v) {
   return length > 0.0 ? Vec3(v / length) : Vec3::Zero();
 }
 
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
-
 }  // namespace
 
 Vec3 face_normal(const FaceVertexMesh& mesh, std::size_t f) { return normalized_or_zero(newell_normal(corners_of(mesh, f))); }
@@ -80,49 +69,39 @@ std::vector<Vec3> vertex_normals(const FaceVertexMesh& mesh, NormalWeighting wei
 SplitNormals split_normals(const FaceVertexMesh& mesh, double crease_angle) {
   if (!(crease_angle >= 0.0)) throw InvalidInput(detail::message("split_normals: crease angle ", crease_angle, " is negative"));
   const std::vector<Vec3> faces = face_normals(mesh);
-  const EdgeTable table = build_edge_table(mesh);
-  std::vector<std::size_t> first_corner(mesh.face_count() + 1, 0);
-  for (std::size_t f = 0; f < mesh.face_count(); ++f) first_corner[f + 1] = first_corner[f] + mesh.face_sizes()[f];
-  const auto corner_at = [&](std::uint32_t f, std::uint32_t v) {
-    for (std::size_t c = first_corner[f]; c < first_corner[f + 1]; ++c) {
-      if (mesh.face_indices()[c] == v) return static_cast<std::uint32_t>(c);
-    }
-    return 0xffffffffu;
-  };
+  const detail::EdgeTable table(mesh);
   // Corners at one vertex join across a smooth edge (two faces, normals within the angle).
   UnionFind groups(mesh.face_indices().size());
   const double cos_limit = std::cos(crease_angle);
-  for (std::size_t e = 0; e < table.uses.size(); ++e) {
-    const auto& uses = table.uses[e];
-    if (uses.size() != 2) continue;
-    const Vec3& a = faces[uses[0].face];
-    const Vec3& b = faces[uses[1].face];
-    if (a.dot(b) < cos_limit) continue;
-    for (std::uint32_t v : table.vertices[e]) groups.unite(corner_at(uses[0].face, v), corner_at(uses[1].face, v));
+  for (std::size_t e = 0; e < table.edge_count(); ++e) {
+    if (!table.has_two_uses(e)) continue;
+    const auto uses = table.first_two_uses(e);
+    if (faces[uses[0].face].dot(faces[uses[1].face]) < cos_limit) continue;
+    for (std::uint32_t v : table.vertices(e)) {
+      groups.unite(detail::corner_at(mesh, uses[0].face, v), detail::corner_at(mesh, uses[1].face, v));
+    }
   }
+  // A new vertex per group, numbered as the groups first appear in corner order.
+  constexpr std::uint32_t none = 0xffffffffu;
   SplitNormals result;
   std::vector<std::uint32_t> indices(mesh.face_indices().size());
-  std::unordered_map<std::uint32_t, std::uint32_t> vertex_of_group;
+  std::vector<std::uint32_t> vertex_of_group(indices.size(), none);  // by the group's root corner
   std::vector<Vec3> sums;
-  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+  for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
     for (std::size_t k = 0; k < mesh.face_sizes()[f]; ++k) {
-      const auto c = static_cast<std::uint32_t>(first_corner[f] + k);
-      const std::uint32_t root = groups.find(c);
-      const auto [it, inserted] = vertex_of_group.try_emplace(root, static_cast<std::uint32_t>(result.source_vertex.size()));
-      if (inserted) {
+      const auto c = static_cast<std::uint32_t>(mesh.first_corner(f) + k);
+      std::uint32_t& vertex = vertex_of_group[groups.find(c)];
+      if (vertex == none) {
+        vertex = static_cast<std::uint32_t>(result.source_vertex.size());
         result.source_vertex.push_back(mesh.face_indices()[c]);
         sums.push_back(Vec3::Zero());
       }
-      indices[c] = it->second;
-      sums[it->second] += corner_angle(mesh, f, k) * faces[f];
+      indices[c] = vertex;
+      sums[vertex] += corner_angle(mesh, f, k) * faces[f];
     }
   }
   // Isolated vertices are dropped: a split mesh holds only what faces use.
-  Positions positions(static_cast<Eigen::Index>(result.source_vertex.size()), 3);
-  for (std::size_t v = 0; v < result.source_vertex.size(); ++v) {
-    positions.row(static_cast<Eigen::Index>(v)) = mesh.positions().row(result.source_vertex[v]);
-  }
-  result.mesh = FaceVertexMesh(std::move(positions), mesh.face_sizes(), std::move(indices));
+  result.mesh = FaceVertexMesh(mesh.positions()(result.source_vertex, Eigen::all), mesh.face_sizes(), std::move(indices));
   for (Vec3& n : sums) result.normals.push_back(normalized_or_zero(n));
   return result;
 }

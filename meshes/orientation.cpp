@@ -1,43 +1,13 @@
 #include "meshes/orientation.h"
 
 #include <algorithm>
-#include <deque>
 #include <numeric>
 
+#include "core/union_find.h"
 #include "meshes/edge_table.h"
 
 namespace patchwork {
 namespace {
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smaller face is the root
-  }
-};
-
-std::vector<std::uint32_t> components_of(const FaceVertexMesh& mesh, const EdgeTable& table) {
-  UnionFind sets(mesh.face_count());
-  for (const auto& uses : table.uses) {
-    for (std::size_t k = 1; k < uses.size(); ++k) sets.unite(uses[0].face, uses[k].face);
-  }
-  std::vector<std::uint32_t> component(mesh.face_count());
-  std::vector<std::uint32_t> number(mesh.face_count(), 0xffffffffu);
-  std::uint32_t next = 0;
-  for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
-    const std::uint32_t root = sets.find(f);
-    if (number[root] == 0xffffffffu) number[root] = next++;
-    component[f] = number[root];
-  }
-  return component;
-}
 
 // The path from f up to the root of the search tree.
 std::vector<std::uint32_t> path_to_root(std::uint32_t f, const std::vector<std::uint32_t>& parent) {
@@ -69,68 +39,180 @@ double face_volume6(const FaceVertexMesh& mesh, std::uint32_t f) {
 
 }  // namespace
 
-std::vector<std::uint32_t> face_components(const FaceVertexMesh& mesh) {
-  return components_of(mesh, build_edge_table(mesh));
+namespace detail {
+
+FaceComponents face_components(const FaceVertexMesh& mesh, const EdgeTable& table) {
+  UnionFind sets(mesh.face_count());
+  for (std::size_t e = 0; e < table.edge_count(); ++e) {
+    const std::uint32_t first = table.first_use(e), twin = table.twin(first);
+    if (twin < EdgeTable::crowded) {
+      sets.unite(table.face_of(first), table.face_of(twin));
+    } else if (twin == EdgeTable::crowded) {
+      for (const EdgeUse use : table.uses(e)) sets.unite(table.face_of(first), use.face);
+    }
+  }
+  // A set's representative is its smallest face: numbering representatives as they come numbers
+  // the components by smallest face.
+  FaceComponents components{std::vector<std::uint32_t>(mesh.face_count()), 0};
+  for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
+    const std::uint32_t root = sets.find(f);
+    components.of_face[f] =
+        root == f ? static_cast<std::uint32_t>(components.count++) : components.of_face[root];
+  }
+  return components;
 }
 
-Orientation orient(const FaceVertexMesh& mesh) {
-  const EdgeTable table = build_edge_table(mesh);
-  const std::vector<std::uint32_t> component = components_of(mesh, table);
-  const std::uint32_t components = mesh.face_count() == 0 ? 0 : *std::max_element(component.begin(), component.end()) + 1;
-  // Faces' edges, to walk from a face to its neighbours.
-  std::vector<std::size_t> first_corner(mesh.face_count() + 1, 0);
-  for (std::uint32_t f = 0; f < mesh.face_count(); ++f) first_corner[f + 1] = first_corner[f] + mesh.face_sizes()[f];
+namespace {
 
-  std::vector<bool> flip(mesh.face_count(), false);
-  std::vector<bool> seen(mesh.face_count(), false);
-  std::vector<std::uint32_t> parent(mesh.face_count());
-  Orientation result{mesh, {}, std::vector<bool>(components, true), {}};
-  for (std::uint32_t root = 0; root < mesh.face_count(); ++root) {
-    if (seen[root]) continue;
-    seen[root] = true;
-    parent[root] = root;
-    std::deque<std::uint32_t> queue{root};
-    bool conflict_found = false;
-    while (!queue.empty()) {
-      const std::uint32_t f = queue.front();
-      queue.pop_front();
-      for (std::size_t c = first_corner[f]; c < first_corner[f + 1]; ++c) {
-        const std::uint32_t e = table.corner_edge[c];
-        const auto& uses = table.uses[e];
-        if (uses.size() != 2) continue;
-        const EdgeUse& mine = uses[0].face == f ? uses[0] : uses[1];
-        const EdgeUse& other = uses[0].face == f ? uses[1] : uses[0];
-        if (other.face == f) continue;  // a face meeting itself (a repeated vertex): no constraint between faces
-        // Consistent when the two walk the edge in opposite directions after the flips.
-        const bool needs_flip = (mine.forward != flip[f]) == other.forward;
-        if (!seen[other.face]) {
-          seen[other.face] = true;
-          parent[other.face] = f;
-          flip[other.face] = needs_flip;
-          queue.push_back(other.face);
-        } else if (flip[other.face] != needs_flip && !conflict_found) {
-          conflict_found = true;
-          result.component_orientable[component[root]] = false;
-          // The cycle: f up to the common ancestor, then down to other.face.
-          std::vector<std::uint32_t> up = path_to_root(f, parent);
-          std::vector<std::uint32_t> down = path_to_root(other.face, parent);
-          while (up.size() > 1 && down.size() > 1 && up[up.size() - 2] == down[down.size() - 2]) {
-            up.pop_back();
-            down.pop_back();
-          }
-          std::vector<FaceId> cycle;
-          for (std::uint32_t g : up) cycle.push_back(FaceId(g));
-          for (std::size_t k = down.size() - 1; k-- > 0;) cycle.push_back(FaceId(down[k]));
-          result.non_orientable_cycles.push_back(std::move(cycle));
+// Disjoint sets of faces with each face's flip relative to its set's representative (the
+// smallest face, which keeps its orientation): orientation classes grown edge by edge.
+// core/union_find.h keeps no parity, hence this variant.
+class FlipUnionFind {
+ public:
+  explicit FlipUnionFind(std::size_t n) : parent_(n), flip_(n, 0) { std::iota(parent_.begin(), parent_.end(), 0u); }
+
+  /// The representative of f's set; `flip`: whether f is flipped relative to it.
+  std::uint32_t find(std::uint32_t f, bool& flip) noexcept {
+    std::uint8_t parity = 0;
+    while (parent_[f] != f) {
+      const std::uint32_t up = parent_[f];
+      flip_[f] ^= flip_[up];  // path halving: f skips to its grandparent (a root has flip 0)
+      parent_[f] = parent_[up];
+      parity ^= flip_[f];
+      f = parent_[f];
+    }
+    flip = parity != 0;
+    return f;
+  }
+
+  /// Requires f and g to differ in flip exactly when `differ`. Returns false if their sets
+  /// already require the opposite (an orientation conflict).
+  bool unite(std::uint32_t f, std::uint32_t g, bool differ) noexcept {
+    bool flip_f = false, flip_g = false;
+    const std::uint32_t a = find(f, flip_f), b = find(g, flip_g);
+    if (a == b) return (flip_f != flip_g) == differ;
+    const std::uint32_t child = std::max(a, b);
+    parent_[child] = std::min(a, b);
+    flip_[child] = static_cast<std::uint8_t>(flip_f != flip_g) ^ static_cast<std::uint8_t>(differ);
+    return true;
+  }
+
+ private:
+  std::vector<std::uint32_t> parent_;
+  std::vector<std::uint8_t> flip_;
+};
+
+// The breadth-first walk from `root` over its orientation class (faces joined through edges of
+// exactly two faces), flipping faces to agree with the face they are reached from; the first
+// conflict found makes the component non-orientable, with the cycle that proves it.
+void walk_from(std::uint32_t root, const FaceVertexMesh& mesh, const EdgeTable& table,
+               const FaceComponents& components, std::vector<bool>& seen, std::vector<std::uint32_t>& parent,
+               std::vector<std::uint32_t>& queue, OrientationWalk& result) {
+  const std::vector<std::uint32_t>& index = mesh.face_indices();
+  std::vector<bool>& flip = result.flip;
+  seen[root] = true;
+  parent[root] = root;
+  queue.clear();
+  queue.push_back(root);
+  bool conflict_found = false;
+  for (std::size_t head = 0; head < queue.size();) {
+    const std::uint32_t f = queue[head++];
+    for (auto c = static_cast<std::uint32_t>(mesh.first_corner(f)); c < mesh.first_corner(f + 1); ++c) {
+      const std::uint32_t twin = table.twin(c);
+      if (twin >= EdgeTable::crowded) continue;  // no other face, or more than one
+      const EdgeUse mine{f, c};
+      const EdgeUse other{table.face_of(twin), twin};
+      if (other.face == f) continue;  // a face meeting itself (a repeated vertex): no constraint between faces
+      // Consistent when the two walk the edge in opposite directions after the flips.
+      const bool needs_flip = (index[mine.corner] == index[other.corner]) != flip[f];
+      if (!seen[other.face]) {
+        seen[other.face] = true;
+        parent[other.face] = f;
+        flip[other.face] = needs_flip;
+        queue.push_back(other.face);
+      } else if (flip[other.face] != needs_flip && !conflict_found) {
+        conflict_found = true;
+        result.component_orientable[components.of_face[root]] = false;
+        // The cycle: f up to the common ancestor, then down to other.face.
+        std::vector<std::uint32_t> up = path_to_root(f, parent);
+        std::vector<std::uint32_t> down = path_to_root(other.face, parent);
+        while (up.size() > 1 && down.size() > 1 && up[up.size() - 2] == down[down.size() - 2]) {
+          up.pop_back();
+          down.pop_back();
         }
+        std::vector<FaceId> cycle;
+        for (std::uint32_t g : up) cycle.push_back(FaceId(g));
+        for (std::size_t k = down.size() - 1; k-- > 0;) cycle.push_back(FaceId(down[k]));
+        result.non_orientable_cycles.push_back(std::move(cycle));
       }
     }
   }
-  for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
-    if (flip[f]) result.flipped.push_back(FaceId(f));
+}
+
+}  // namespace
+
+OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& table, const FaceComponents& components) {
+  const std::vector<std::uint32_t>& index = mesh.face_indices();
+  const auto faces = static_cast<std::uint32_t>(mesh.face_count());
+  OrientationWalk result{std::vector<bool>(faces, false), std::vector<bool>(components.count, true), {}};
+  // An orientable class has one consistent flip per face relative to its smallest face, whatever
+  // the order of the walk: the union-find finds them (and the classes that have none) in edge
+  // order, with far better locality than a breadth-first walk over a large mesh.
+  FlipUnionFind classes(faces);
+  std::vector<std::uint32_t> conflicts;  // a face of each class with a conflict
+  for (std::size_t e = 0; e < table.edge_count(); ++e) {
+    if (!table.has_two_uses(e)) continue;
+    const auto [first, second] = table.first_two_uses(e);
+    if (first.face == second.face) continue;  // a face meeting itself: no constraint
+    // Two faces walking the edge the same way must differ in flip.
+    if (!classes.unite(first.face, second.face, index[first.corner] == index[second.corner])) {
+      conflicts.push_back(first.face);
+    }
   }
-  result.mesh = with_flips(mesh, flip);
+  for (std::uint32_t f = 0; f < faces; ++f) {
+    bool flip = false;
+    classes.find(f, flip);
+    result.flip[f] = flip;
+  }
+  if (conflicts.empty()) return result;
+  // A non-orientable class has no consistent flips: its flips and the proving cycle are those of
+  // the breadth-first walk from its smallest face, class by class in that order.
+  std::vector<std::uint32_t> roots;
+  for (std::uint32_t f : conflicts) {
+    bool flip = false;
+    roots.push_back(classes.find(f, flip));
+  }
+  std::sort(roots.begin(), roots.end());
+  roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+  std::vector<bool> seen(faces, false);
+  std::vector<std::uint32_t> parent(faces);
+  std::vector<std::uint32_t> queue;
+  for (std::uint32_t root : roots) walk_from(root, mesh, table, components, seen, parent, queue, result);
   return result;
+}
+
+}  // namespace detail
+
+std::vector<std::uint32_t> face_components(const FaceVertexMesh& mesh) {
+  return detail::face_components(mesh, detail::EdgeTable(mesh)).of_face;
+}
+
+namespace {
+
+Orientation oriented(const FaceVertexMesh& mesh, detail::OrientationWalk walk) {
+  Orientation result{with_flips(mesh, walk.flip), {}, std::move(walk.component_orientable),
+                     std::move(walk.non_orientable_cycles)};
+  for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
+    if (walk.flip[f]) result.flipped.push_back(FaceId(f));
+  }
+  return result;
+}
+
+}  // namespace
+
+Orientation orient(const FaceVertexMesh& mesh) {
+  const detail::EdgeTable table(mesh);
+  return oriented(mesh, detail::walk_orientation(mesh, table, detail::face_components(mesh, table)));
 }
 
 double signed_volume(const FaceVertexMesh& mesh) {
@@ -140,16 +222,18 @@ double signed_volume(const FaceVertexMesh& mesh) {
 }
 
 Orientation orient_outward(const FaceVertexMesh& mesh) {
-  Orientation result = orient(mesh);
-  const EdgeTable table = build_edge_table(result.mesh);
-  const std::vector<std::uint32_t> component = components_of(result.mesh, table);
-  const std::size_t components = result.component_orientable.size();
-  std::vector<bool> closed(components, true);
-  for (const auto& uses : table.uses) {
-    if (uses.size() == 1) closed[component[uses[0].face]] = false;
+  // Flips change no edge's faces: one table serves the walk, the components and closedness.
+  const detail::EdgeTable table(mesh);
+  const detail::FaceComponents components = detail::face_components(mesh, table);
+  Orientation result = oriented(mesh, detail::walk_orientation(mesh, table, components));
+  const std::vector<std::uint32_t>& component = components.of_face;
+  std::vector<bool> closed(components.count, true);
+  for (std::size_t e = 0; e < table.edge_count(); ++e) {
+    const std::uint32_t first = table.first_use(e);
+    if (table.twin(first) == detail::EdgeTable::none) closed[component[table.face_of(first)]] = false;
   }
   // Signed volume per component, from the oriented faces.
-  std::vector<double> volume(components, 0.0);
+  std::vector<double> volume(components.count, 0.0);
   for (std::uint32_t f = 0; f < result.mesh.face_count(); ++f) volume[component[f]] += face_volume6(result.mesh, f);
   std::vector<bool> flip(result.mesh.face_count(), false);
   bool any = false;

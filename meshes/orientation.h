@@ -45,4 +45,27 @@ double signed_volume(const FaceVertexMesh& mesh);
 /// Edge-connected components: component[f] for every face, numbered 0.. by smallest face.
 std::vector<std::uint32_t> face_components(const FaceVertexMesh& mesh);
 
+namespace detail {
+
+class EdgeTable;
+
+/// Edge-connected components from an edge table (analyze() and orient() share one table).
+struct FaceComponents {
+  /// of_face[f]: the component of face f, numbered 0.. by smallest face.
+  std::vector<std::uint32_t> of_face;
+  std::size_t count = 0;
+};
+FaceComponents face_components(const FaceVertexMesh& mesh, const EdgeTable& table);
+
+/// orient()'s breadth-first walk without building the flipped mesh.
+struct OrientationWalk {
+  /// flip[f]: whether face f is flipped.
+  std::vector<bool> flip;
+  std::vector<bool> component_orientable;
+  std::vector<std::vector<FaceId>> non_orientable_cycles;
+};
+OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& table, const FaceComponents& components);
+
+}  // namespace detail
+
 }  // namespace patchwork

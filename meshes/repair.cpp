@@ -3,42 +3,33 @@
 #include <algorithm>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 
+#include "core/union_find.h"
 #include "meshes/edge_table.h"
 #include "meshes/orientation.h"
 
 namespace patchwork {
 namespace {
 
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
+constexpr std::uint32_t none = 0xffffffffu;
 
-// A mutable soup: faces as vertex lists, positions by source vertex.
+// A mutable soup: a face list whose vertices are copies of input vertices (vertex_source).
 struct Soup {
-  std::vector<std::vector<std::uint32_t>> faces;
+  std::vector<std::uint32_t> sizes;
+  std::vector<std::uint32_t> indices;
   std::vector<std::uint32_t> face_source;
   std::vector<std::uint32_t> vertex_source;
 
   FaceVertexMesh to_mesh(const FaceVertexMesh& input) const {
-    Positions positions(static_cast<Eigen::Index>(vertex_source.size()), 3);
-    for (std::size_t v = 0; v < vertex_source.size(); ++v) {
-      positions.row(static_cast<Eigen::Index>(v)) = input.positions().row(vertex_source[v]);
-    }
-    std::vector<std::uint32_t> sizes;
-    std::vector<std::uint32_t> indices;
-    for (const auto& face : faces) {
-      sizes.push_back(static_cast<std::uint32_t>(face.size()));
-      indices.insert(indices.end(), face.begin(), face.end());
-    }
-    return FaceVertexMesh(std::move(positions), std::move(sizes), std::move(indices));
+    return FaceVertexMesh(input.positions()(vertex_source, Eigen::all), sizes, indices);
+  }
+
+  // A new copy of soup vertex v; split[its input vertex] is set.
+  std::uint32_t copy_of(std::uint32_t v, std::vector<bool>& split) {
+    const auto copy = static_cast<std::uint32_t>(vertex_source.size());
+    vertex_source.push_back(vertex_source[v]);
+    split[vertex_source[v]] = true;
+    return copy;
   }
 };
 
@@ -46,43 +37,30 @@ struct Soup {
 // Returns whether any vertex was split.
 bool split_fans(Soup& soup, const FaceVertexMesh& input, std::vector<bool>& split) {
   const FaceVertexMesh mesh = soup.to_mesh(input);
-  const EdgeTable table = build_edge_table(mesh);
-  std::vector<std::size_t> first_corner(mesh.face_count() + 1, 0);
-  for (std::size_t f = 0; f < mesh.face_count(); ++f) first_corner[f + 1] = first_corner[f] + mesh.face_sizes()[f];
-  const auto corner_at = [&](std::uint32_t f, std::uint32_t v) {
-    for (std::size_t c = first_corner[f]; c < first_corner[f + 1]; ++c) {
-      if (mesh.face_indices()[c] == v) return static_cast<std::uint32_t>(c);
-    }
-    return 0xffffffffu;
-  };
+  const detail::EdgeTable table(mesh);
   UnionFind fans(mesh.face_indices().size());
-  for (std::size_t e = 0; e < table.uses.size(); ++e) {
-    const auto& uses = table.uses[e];
-    if (uses.size() != 2) continue;
-    for (std::uint32_t v : table.vertices[e]) fans.unite(corner_at(uses[0].face, v), corner_at(uses[1].face, v));
+  for (std::size_t e = 0; e < table.edge_count(); ++e) {
+    if (!table.has_two_uses(e)) continue;
+    const auto uses = table.first_two_uses(e);
+    for (std::uint32_t v : table.vertices(e)) {
+      fans.unite(detail::corner_at(mesh, uses[0].face, v), detail::corner_at(mesh, uses[1].face, v));
+    }
   }
   // The first fan of each vertex keeps the vertex; later fans get copies.
-  std::unordered_map<std::uint32_t, std::uint32_t> vertex_of_fan;
+  std::vector<std::uint32_t> vertex_of_fan(soup.indices.size(), none);  // by the fan's root corner
   std::vector<bool> taken(soup.vertex_source.size(), false);
   bool any = false;
-  std::size_t c = 0;
-  for (auto& face : soup.faces) {
-    for (std::uint32_t& v : face) {
-      const std::uint32_t root = fans.find(static_cast<std::uint32_t>(c++));
-      const auto it = vertex_of_fan.find(root);
-      if (it != vertex_of_fan.end()) {
-        v = it->second;
-      } else if (!taken[v]) {
-        taken[v] = true;
-        vertex_of_fan.emplace(root, v);
-      } else {
-        const auto copy = static_cast<std::uint32_t>(soup.vertex_source.size());
-        soup.vertex_source.push_back(soup.vertex_source[v]);
-        split[soup.vertex_source[v]] = true;
-        vertex_of_fan.emplace(root, copy);
-        v = copy;
-        any = true;
-      }
+  for (std::uint32_t c = 0; c < soup.indices.size(); ++c) {
+    std::uint32_t& v = soup.indices[c];
+    std::uint32_t& fan_vertex = vertex_of_fan[fans.find(c)];
+    if (fan_vertex != none) {
+      v = fan_vertex;
+    } else if (!taken[v]) {
+      taken[v] = true;
+      fan_vertex = v;
+    } else {
+      v = fan_vertex = soup.copy_of(v, split);
+      any = true;
     }
   }
   return any;
@@ -90,17 +68,18 @@ bool split_fans(Soup& soup, const FaceVertexMesh& input, std::vector<bool>& spli
 
 // Cuts edges still used by more than two faces: faces beyond the first two get own copies.
 bool cut_crowded_edges(Soup& soup, const FaceVertexMesh& input, std::vector<bool>& split) {
-  const EdgeTable table = build_edge_table(soup.to_mesh(input));
+  const FaceVertexMesh mesh = soup.to_mesh(input);
+  const detail::EdgeTable table(mesh);
   bool any = false;
-  for (std::size_t e = 0; e < table.uses.size(); ++e) {
-    const auto& uses = table.uses[e];
-    for (std::size_t k = 2; k < uses.size(); ++k) {
-      for (std::uint32_t& v : soup.faces[uses[k].face]) {
-        if (v != table.vertices[e][0] && v != table.vertices[e][1]) continue;
-        const auto copy = static_cast<std::uint32_t>(soup.vertex_source.size());
-        soup.vertex_source.push_back(soup.vertex_source[v]);
-        split[soup.vertex_source[v]] = true;
-        v = copy;
+  for (std::size_t e = 0; e < table.edge_count(); ++e) {
+    const auto [a, b] = table.vertices(e);
+    std::size_t k = 0;
+    for (const detail::EdgeUse use : table.uses(e)) {
+      if (k++ < 2) continue;
+      for (std::size_t c = mesh.first_corner(use.face); c < mesh.first_corner(use.face + 1); ++c) {
+        std::uint32_t& v = soup.indices[c];
+        if (v != a && v != b) continue;
+        v = soup.copy_of(v, split);
         any = true;
       }
     }
@@ -117,8 +96,9 @@ RepairReport repair(const FaceVertexMesh& mesh) {
   std::iota(soup.vertex_source.begin(), soup.vertex_source.end(), 0u);
   std::vector<bool> split(mesh.vertex_count(), false);
   // 1. Merge consecutive repeats; remove what is left with < 3 corners; unpinch faces.
+  std::vector<std::uint32_t> corners;
   for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
-    std::vector<std::uint32_t> corners;
+    corners.clear();
     for (std::uint32_t v : mesh.face(f)) {
       if (corners.empty() || corners.back() != v) corners.push_back(v);
     }
@@ -128,18 +108,14 @@ RepairReport repair(const FaceVertexMesh& mesh) {
       report.removed_faces.push_back(f);
       continue;
     }
-    std::vector<std::uint32_t> seen;
-    for (std::uint32_t& v : corners) {
-      if (std::find(seen.begin(), seen.end(), v) != seen.end()) {
-        const auto copy = static_cast<std::uint32_t>(soup.vertex_source.size());
-        soup.vertex_source.push_back(v);
-        split[v] = true;
-        v = copy;
-      } else {
-        seen.push_back(v);
+    for (std::size_t k = 1; k < corners.size(); ++k) {
+      if (std::find(corners.begin(), corners.begin() + static_cast<std::ptrdiff_t>(k), corners[k]) !=
+          corners.begin() + static_cast<std::ptrdiff_t>(k)) {
+        corners[k] = soup.copy_of(corners[k], split);
       }
     }
-    soup.faces.push_back(std::move(corners));
+    soup.sizes.push_back(static_cast<std::uint32_t>(corners.size()));
+    soup.indices.insert(soup.indices.end(), corners.begin(), corners.end());
     soup.face_source.push_back(f);
   }
   // 2. Split fans and crowded edges until nothing changes (each round only adds copies).

@@ -3,143 +3,213 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <numeric>
 #include <ostream>
-#include <unordered_map>
 
+#include "core/union_find.h"
 #include "meshes/edge_table.h"
 #include "meshes/orientation.h"
 
 namespace patchwork {
 namespace {
 
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
+constexpr std::uint32_t none = 0xffffffffu;
 
-// Number of cycles in the boundary graph: closed walks that use every boundary edge once,
-// continuing at each vertex with the first unused boundary edge there.
-Count count_loops(const std::vector<std::array<std::uint32_t, 2>>& edges) {
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> at;
+// The boundary loops of each component: closed walks that use every boundary edge once,
+// continuing at each vertex with the first unused boundary edge there (in edge order).
+// boundary: the boundary edges in edge order; result[c]: the loops of component c.
+std::vector<Count> count_loops(const FaceVertexMesh& mesh, const detail::EdgeTable& table,
+                               const std::vector<std::uint32_t>& boundary, const detail::FaceComponents& components) {
+  const std::vector<std::uint32_t>& component = components.of_face;
+  const auto component_of = [&](std::uint32_t e) { return component[table.face_of(table.first_use(e))]; };
+  // The boundary edges grouped by component, in edge order within each (a counting sort).
+  std::vector<std::uint32_t> first(components.count + 1, 0);
+  for (std::uint32_t e : boundary) ++first[component_of(e) + 1];
+  for (std::size_t c = 1; c < first.size(); ++c) first[c] += first[c - 1];
+  std::vector<std::uint32_t> edges(boundary.size());
+  {
+    std::vector<std::uint32_t> next = first;
+    for (std::uint32_t e : boundary) edges[next[component_of(e)]++] = e;
+  }
+  // At each vertex, its boundary edges (positions k in `edges`), ascending: by component, then
+  // by edge. Scanning for the first unused one passes the used ones of earlier components; one
+  // of a later component means there is none left in this one.
+  std::vector<std::uint32_t> at_start(mesh.vertex_count() + 2, 0);
+  for (std::uint32_t e : edges) {
+    for (std::uint32_t v : table.vertices(e)) ++at_start[v + 2];
+  }
+  for (std::size_t v = 2; v < at_start.size(); ++v) at_start[v] += at_start[v - 1];
+  std::vector<std::uint32_t> at(2 * edges.size());
   for (std::uint32_t k = 0; k < edges.size(); ++k) {
-    at[edges[k][0]].push_back(k);
-    at[edges[k][1]].push_back(k);
+    for (std::uint32_t v : table.vertices(edges[k])) at[at_start[v + 1]++] = k;
   }
   std::vector<bool> used(edges.size(), false);
-  Count loops = 0;
-  for (std::uint32_t start = 0; start < edges.size(); ++start) {
-    if (used[start]) continue;
-    ++loops;
-    used[start] = true;
-    const std::uint32_t origin = edges[start][0];
-    std::uint32_t vertex = edges[start][1];
-    while (vertex != origin) {
-      std::uint32_t next = 0xffffffffu;
-      for (std::uint32_t k : at[vertex]) {
-        if (!used[k]) {
-          next = k;
-          break;
+  std::vector<Count> loops(components.count, 0);
+  for (std::uint32_t c = 0; c < components.count; ++c) {
+    for (std::uint32_t start = first[c]; start < first[c + 1]; ++start) {
+      if (used[start]) continue;
+      ++loops[c];
+      used[start] = true;
+      const std::uint32_t origin = table.vertices(edges[start])[0];
+      std::uint32_t vertex = table.vertices(edges[start])[1];
+      while (vertex != origin) {
+        std::uint32_t next = none;
+        for (std::uint32_t i = at_start[vertex]; i < at_start[vertex + 1]; ++i) {
+          if (!used[at[i]]) {
+            next = at[i];
+            break;
+          }
         }
+        if (next == none || next >= first[c + 1]) break;  // only on odd-degree boundary vertices (non-manifold)
+        used[next] = true;
+        const auto ends = table.vertices(edges[next]);
+        vertex = ends[0] == vertex ? ends[1] : ends[0];
       }
-      if (next == 0xffffffffu) break;  // only on odd-degree boundary vertices (non-manifold)
-      used[next] = true;
-      vertex = edges[next][0] == vertex ? edges[next][1] : edges[next][0];
     }
   }
   return loops;
 }
 
+// The vertices whose faces form several fans, ascending: corners at a vertex are joined through
+// each edge of two or more faces there (every corner of each such face at that end, should a
+// face repeat the vertex). Where a vertex's edges have at most two faces and no face repeats it
+// (nearly everywhere), a corner has at most two neighbours, and its fan is walked through twins;
+// the other vertices are decided by a union-find over their corners.
+std::vector<std::uint32_t> vertices_with_several_fans(const FaceVertexMesh& mesh, const detail::EdgeTable& table,
+                                                      const std::vector<std::uint32_t>& repeating_faces,
+                                                      const std::vector<std::uint32_t>& crowded_edges) {
+  const std::vector<std::uint32_t>& index = mesh.face_indices();
+  std::vector<bool> general(mesh.vertex_count(), false);
+  for (std::uint32_t f : repeating_faces) {
+    const auto face = mesh.face(f);
+    for (std::uint32_t v : face) general[v] = general[v] || std::count(face.begin(), face.end(), v) > 1;
+  }
+  for (std::uint32_t e : crowded_edges) {
+    for (std::uint32_t v : table.vertices(e)) general[v] = true;
+  }
+  std::vector<std::uint32_t> several;
+  // Walks: leaving corner z (at v) through the edge walked by `leave` (z for its outgoing edge,
+  // the corner before z for its incoming one), the twin's face has its corner at v at the twin
+  // or after it, and the walk goes on through that corner's other edge.
+  std::vector<std::uint8_t> fans(mesh.vertex_count(), 0);
+  std::vector<bool> visited(index.size(), false);
+  for (std::uint32_t c = 0; c < index.size(); ++c) {
+    const std::uint32_t v = index[c];
+    if (general[v] || visited[c]) continue;
+    visited[c] = true;
+    if (fans[v] < 2 && ++fans[v] == 2) several.push_back(v);
+    for (std::uint32_t leave : {c, table.prev_corner(c)}) {
+      for (std::uint32_t twin = table.twin(leave); twin < detail::EdgeTable::crowded; twin = table.twin(leave)) {
+        const std::uint32_t z = index[twin] == v ? twin : table.next_corner(twin);
+        if (visited[z]) break;
+        visited[z] = true;
+        leave = z == twin ? table.prev_corner(z) : z;
+      }
+    }
+  }
+  if (std::find(general.begin(), general.end(), true) != general.end()) {
+    UnionFind corners(index.size());
+    for (std::uint32_t e = 0; e < table.edge_count(); ++e) {
+      if (table.twin(table.first_use(e)) == detail::EdgeTable::none) continue;  // one face
+      for (std::uint32_t end : table.vertices(e)) {
+        if (!general[end]) continue;
+        std::uint32_t first = none;
+        for (const detail::EdgeUse use : table.uses(e)) {
+          detail::for_each_corner_at(mesh, use.face, end, [&](std::uint32_t c) {
+            if (first == none) {
+              first = c;
+            } else {
+              corners.unite(first, c);
+            }
+          });
+        }
+      }
+    }
+    std::vector<std::uint32_t> fan_root(mesh.vertex_count(), none);
+    for (std::uint32_t c = 0; c < index.size(); ++c) {
+      const std::uint32_t v = index[c];
+      if (!general[v]) continue;
+      const std::uint32_t root = corners.find(c);
+      if (fan_root[v] == none) {
+        fan_root[v] = root;
+      } else if (fan_root[v] != root && fans[v] < 2) {
+        fans[v] = 2;
+        several.push_back(v);
+      }
+    }
+  }
+  std::sort(several.begin(), several.end());
+  return several;
+}
+
 }  // namespace
 
 TopologyReport analyze(const FaceVertexMesh& mesh) {
-  const EdgeTable table = build_edge_table(mesh);
-  const std::vector<std::uint32_t> component = face_components(mesh);
-  const Orientation orientation = orient(mesh);
-  const auto components = static_cast<std::size_t>(orientation.component_orientable.size());
+  const detail::EdgeTable table(mesh);
+  const detail::FaceComponents components = detail::face_components(mesh, table);
+  const std::vector<std::uint32_t>& component = components.of_face;
+  detail::OrientationWalk orientation = detail::walk_orientation(mesh, table, components);
 
   TopologyReport report{};
   report.faces = static_cast<Count>(mesh.face_count());
-  report.edges = static_cast<Count>(table.vertices.size());
-  report.components = static_cast<Count>(components);
-  report.non_orientable_cycles = orientation.non_orientable_cycles;
+  report.edges = static_cast<Count>(table.edge_count());
+  report.components = static_cast<Count>(components.count);
+  report.non_orientable_cycles = std::move(orientation.non_orientable_cycles);
+  report.per_component.assign(components.count, ComponentTopology{0, 0, 0, 0, 0, true, true, std::nullopt});
 
-  // Vertices per component and in all; isolated vertices.
-  std::vector<std::vector<std::uint32_t>> vertex_components(mesh.vertex_count());
-  std::vector<std::size_t> first_corner(mesh.face_count() + 1, 0);
+  // Vertices per component and in all; isolated vertices. Nearly every vertex lies in one
+  // component: first_component[v] holds it, and (v, c) pairs for any other are kept apart.
+  std::vector<std::uint32_t> first_component(mesh.vertex_count(), none);
+  std::vector<std::uint64_t> more_components;  // v << 32 | c, sorted and unique below
   for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
-    first_corner[f + 1] = first_corner[f] + mesh.face_sizes()[f];
-    for (std::uint32_t v : mesh.face(f)) vertex_components[v].push_back(component[f]);
-    std::vector<std::uint32_t> corners(mesh.face(f).begin(), mesh.face(f).end());
-    std::sort(corners.begin(), corners.end());
-    if (std::adjacent_find(corners.begin(), corners.end()) != corners.end()) report.faces_repeating_a_vertex.push_back(f);
-  }
-  report.per_component.assign(components, ComponentTopology{0, 0, 0, 0, 0, true, true, std::nullopt});
-  for (auto& list : vertex_components) {
-    if (list.empty()) {
-      ++report.isolated_vertices;
-      continue;
+    const std::uint32_t c = component[f];
+    for (std::uint32_t v : mesh.face(f)) {
+      if (first_component[v] == none) {
+        first_component[v] = c;
+      } else if (first_component[v] != c) {
+        more_components.push_back(static_cast<std::uint64_t>(v) << 32 | c);
+      }
     }
-    ++report.vertices;
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    for (std::uint32_t c : list) ++report.per_component[c].vertices;
+    ++report.per_component[c].faces;
+    if (repeated_vertex(mesh.face(f))) report.faces_repeating_a_vertex.push_back(f);
   }
-  for (std::uint32_t f = 0; f < mesh.face_count(); ++f) ++report.per_component[component[f]].faces;
+  std::sort(more_components.begin(), more_components.end());
+  more_components.erase(std::unique(more_components.begin(), more_components.end()), more_components.end());
+  for (std::uint32_t c : first_component) {
+    if (c == none) {
+      ++report.isolated_vertices;
+    } else {
+      ++report.vertices;
+      ++report.per_component[c].vertices;
+    }
+  }
+  for (std::uint64_t pair : more_components) ++report.per_component[static_cast<std::uint32_t>(pair)].vertices;
 
   // Edges: per component counts, boundary edges, non-manifold edges.
-  std::vector<std::vector<std::array<std::uint32_t, 2>>> boundary(components);
-  for (std::size_t e = 0; e < table.vertices.size(); ++e) {
-    const std::uint32_t c = component[table.uses[e][0].face];
+  std::vector<std::uint32_t> boundary;
+  std::vector<std::uint32_t> crowded_edges;
+  for (std::uint32_t e = 0; e < table.edge_count(); ++e) {
+    const std::uint32_t first = table.first_use(e);
+    const std::uint32_t c = component[table.face_of(first)];
     ++report.per_component[c].edges;
-    if (table.uses[e].size() == 1) {
+    if (table.twin(first) == detail::EdgeTable::none) {
       ++report.boundary_edges;
-      boundary[c].push_back(table.vertices[e]);
-    } else if (table.uses[e].size() > 2) {
-      report.non_manifold_edges.push_back(table.vertices[e]);
+      boundary.push_back(e);
+    } else if (table.twin(first) == detail::EdgeTable::crowded) {
+      report.non_manifold_edges.push_back(table.vertices(e));
+      crowded_edges.push_back(e);
       report.per_component[c].manifold = false;
     }
   }
   for (std::uint32_t f : report.faces_repeating_a_vertex) report.per_component[component[f]].manifold = false;
 
-  // Vertex fans: corners at the same vertex are joined through each edge both faces share there.
-  UnionFind corners(mesh.face_indices().size());
-  for (std::size_t e = 0; e < table.uses.size(); ++e) {
-    const auto& uses = table.uses[e];
-    if (uses.size() < 2) continue;
-    for (std::uint32_t end : table.vertices[e]) {
-      // The corners of each using face at vertex `end`.
-      std::vector<std::size_t> at_end;
-      for (const EdgeUse& use : uses) {
-        for (std::size_t c = first_corner[use.face]; c < first_corner[use.face + 1]; ++c) {
-          if (mesh.face_indices()[c] == end) at_end.push_back(c);
-        }
-      }
-      for (std::size_t k = 1; k < at_end.size(); ++k) {
-        corners.unite(static_cast<std::uint32_t>(at_end[0]), static_cast<std::uint32_t>(at_end[k]));
-      }
-    }
-  }
-  std::vector<std::uint32_t> fan_root(mesh.vertex_count(), 0xffffffffu);
-  std::vector<bool> reported(mesh.vertex_count(), false);
-  for (std::size_t c = 0; c < mesh.face_indices().size(); ++c) {
-    const std::uint32_t v = mesh.face_indices()[c];
-    const std::uint32_t root = corners.find(static_cast<std::uint32_t>(c));
-    if (fan_root[v] == 0xffffffffu) {
-      fan_root[v] = root;
-    } else if (fan_root[v] != root && !reported[v]) {
-      reported[v] = true;
-      report.non_manifold_vertices.push_back(v);
-    }
-  }
-  std::sort(report.non_manifold_vertices.begin(), report.non_manifold_vertices.end());
+  report.non_manifold_vertices =
+      vertices_with_several_fans(mesh, table, report.faces_repeating_a_vertex, crowded_edges);
   for (std::uint32_t v : report.non_manifold_vertices) {
-    for (std::uint32_t c : vertex_components[v]) report.per_component[c].manifold = false;
+    report.per_component[first_component[v]].manifold = false;
+    const auto from = std::lower_bound(more_components.begin(), more_components.end(), static_cast<std::uint64_t>(v) << 32);
+    for (auto it = from; it != more_components.end() && (*it >> 32) == v; ++it) {
+      report.per_component[static_cast<std::uint32_t>(*it)].manifold = false;
+    }
   }
 
   report.edge_manifold = report.non_manifold_edges.empty();
@@ -148,12 +218,13 @@ TopologyReport analyze(const FaceVertexMesh& mesh) {
   report.closed = report.boundary_edges == 0;
   report.euler = report.vertices - report.edges + report.faces;
   report.orientable = true;
+  const std::vector<Count> loops = count_loops(mesh, table, boundary, components);
   Count genus = 0;
   bool genus_defined = true;
-  for (std::size_t c = 0; c < components; ++c) {
+  for (std::size_t c = 0; c < components.count; ++c) {
     ComponentTopology& part = report.per_component[c];
     part.euler = part.vertices - part.edges + part.faces;
-    part.boundary_loops = count_loops(boundary[c]);
+    part.boundary_loops = loops[c];
     part.orientable = orientation.component_orientable[c];
     report.boundary_loops += part.boundary_loops;
     report.orientable = report.orientable && part.orientable;

@@ -73,7 +73,7 @@ struct TopologyReport {
   std::vector<std::vector<FaceId>> non_orientable_cycles;
 };
 
-/// The topology of any face list (non-manifold input included), in O(corners) expected time.
+/// The topology of any face list (non-manifold input included), in O(corners + vertices) time.
 TopologyReport analyze(const FaceVertexMesh& mesh);
 
 /// The report as text, one fact per line.
