@@ -1,0 +1,499 @@
+#include "io/gltf.h"
+
+// Debian ships tinygltf as a shared library built with its defaults (stb_image, stb_image_write,
+// nlohmann/json, the file system callbacks): include the header plainly, without
+// TINYGLTF_IMPLEMENTATION or any TINYGLTF_NO_* macro, so our view of its classes is the library's.
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "core/assert.h"
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "io/mesh_file.h"
+#include "meshes/topology.h"
+
+namespace patchwork {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
+
+// The largest buffer written: the 4 GiB a GLB chunk (and tinygltf's base64 encoder) can hold,
+// less 1 MiB for the GLB header and the JSON.
+constexpr std::uint64_t max_buffer_bytes = 0xffffffffull - (1ull << 20);
+
+// ---------------------------------------------------------------------------------------------
+// Writing
+
+// Z-up to Y-up: (x, y, z) -> (x, z, -y), a rotation about +x (see io/gltf.h).
+Vec3 to_gltf_axes(const Vec3& v, bool z_up) { return z_up ? Vec3(v.x(), v.z(), -v.y()) : v; }
+
+// Y-up back to Z-up: (X, Y, Z) -> (X, -Z, Y), the inverse rotation.
+Vec3 from_gltf_axes(const Vec3& v, bool z_up) { return z_up ? Vec3(v.x(), -v.z(), v.y()) : v; }
+
+// The float nearest x. \throws InvalidInput naming the value if it does not fit in a float
+// (checked before the cast: converting a double beyond the float range is undefined behaviour).
+float to_float(double x, const char* what, std::size_t vertex) {
+  if (!(std::abs(x) <= std::numeric_limits<float>::max())) {
+    throw InvalidInput(detail::message("format_gltf: ", what, " of vertex ", vertex, " (", x, ") does not fit in a float"));
+  }
+  return static_cast<float>(x);
+}
+
+// A unit direction (validate() allows 1e-6 slack) normalised in double and rounded to float:
+// one rounding, so the float vector's length is 1 to within about 1e-7.
+void append_unit(std::vector<float>& out, const Vec3& direction) {
+  const Vec3 unit = direction / direction.norm();
+  for (int c = 0; c < 3; ++c) out.push_back(static_cast<float>(unit[c]));
+}
+
+// The glTF document under construction: one buffer, and a bufferView per accessor.
+class GltfBuilder {
+ public:
+  GltfBuilder() { model_.buffers.emplace_back(); }
+
+  /// Appends `values` as a new bufferView (at a multiple of 4 bytes, zero-padded after) with an
+  /// accessor over it; returns the accessor's index.
+  template <class T>
+  int add(const std::vector<T>& values, int components, int component_type, int target) {
+    std::vector<unsigned char>& data = model_.buffers[0].data;
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = data.size();
+    view.byteLength = values.size() * sizeof(T);
+    view.target = target;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
+    data.insert(data.end(), bytes, bytes + view.byteLength);
+    data.resize((data.size() + 3) / 4 * 4, 0);
+    model_.bufferViews.push_back(view);
+
+    tinygltf::Accessor accessor;
+    accessor.bufferView = static_cast<int>(model_.bufferViews.size() - 1);
+    accessor.byteOffset = 0;
+    accessor.componentType = component_type;
+    accessor.count = values.size() / static_cast<std::size_t>(components);
+    accessor.type = components == 1 ? TINYGLTF_TYPE_SCALAR : components;  // TINYGLTF_TYPE_VECn is n
+    model_.accessors.push_back(accessor);
+    return static_cast<int>(model_.accessors.size() - 1);
+  }
+
+  tinygltf::Accessor& accessor(int index) { return model_.accessors[static_cast<std::size_t>(index)]; }
+  tinygltf::Model& model() { return model_; }
+
+ private:
+  tinygltf::Model model_;
+};
+
+// Whether an edge of the welded triangles is used by exactly one of them (meshes/topology.h).
+bool has_boundary_edge(const RenderMesh& mesh) { return analyze(welded_faces(mesh)).boundary_edges > 0; }
+
+// The bytes the buffer will take, each bufferView padded to 4.
+std::uint64_t buffer_bytes(const RenderMesh& mesh, std::size_t index_bytes) {
+  const auto padded = [](std::uint64_t bytes) { return (bytes + 3) / 4 * 4; };
+  const std::uint64_t n = mesh.vertex_count();
+  std::uint64_t total = 12 * n + padded(static_cast<std::uint64_t>(mesh.indices.size()) * index_bytes);
+  if (!mesh.normals.empty()) total += 12 * n;
+  if (!mesh.uvs.empty()) total += 8 * n;
+  if (!mesh.tangents.empty()) total += 16 * n;
+  return total;
+}
+
+// The attribute accessors of the primitive (the indices are added by the caller).
+void add_attributes(GltfBuilder& builder, tinygltf::Primitive& primitive, const RenderMesh& mesh, bool z_up) {
+  const std::size_t n = mesh.vertex_count();
+  std::vector<float> values;
+  values.reserve(4 * n);
+  for (std::size_t v = 0; v < n; ++v) {
+    const Vec3 p = to_gltf_axes(mesh.positions[v], z_up);
+    for (int c = 0; c < 3; ++c) values.push_back(to_float(p[c], "position", v));
+  }
+  const int position = builder.add(values, 3, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
+  // min/max of the stored floats, as the validator compares them.
+  std::vector<double> low(3, std::numeric_limits<double>::infinity());
+  std::vector<double> high(3, -std::numeric_limits<double>::infinity());
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    low[k % 3] = std::min(low[k % 3], static_cast<double>(values[k]));
+    high[k % 3] = std::max(high[k % 3], static_cast<double>(values[k]));
+  }
+  builder.accessor(position).minValues = low;
+  builder.accessor(position).maxValues = high;
+  primitive.attributes["POSITION"] = position;
+
+  if (!mesh.normals.empty()) {
+    values.clear();
+    for (const Vec3& normal : mesh.normals) append_unit(values, to_gltf_axes(normal, z_up));
+    primitive.attributes["NORMAL"] =
+        builder.add(values, 3, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
+  }
+  if (!mesh.uvs.empty()) {
+    values.clear();
+    for (std::size_t v = 0; v < n; ++v) {
+      for (int c = 0; c < 2; ++c) values.push_back(to_float(mesh.uvs[v][c], "uv", v));
+    }
+    primitive.attributes["TEXCOORD_0"] =
+        builder.add(values, 2, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
+  }
+  if (!mesh.tangents.empty()) {
+    values.clear();
+    for (const Vec4& tangent : mesh.tangents) {
+      append_unit(values, to_gltf_axes(tangent.head<3>(), z_up));
+      values.push_back(static_cast<float>(tangent.w()));  // exactly +1 or -1 (validate())
+    }
+    primitive.attributes["TANGENT"] =
+        builder.add(values, 4, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
+  }
+}
+
+// The default material: light grey, not metallic, half rough.
+tinygltf::Material default_material(bool double_sided) {
+  tinygltf::Material material;
+  material.name = "default";
+  material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  material.pbrMetallicRoughness.roughnessFactor = 0.5;
+  material.doubleSided = double_sided;
+  return material;
+}
+
+// The format named by the extension of `path`. \throws IoError for any other extension.
+GltfFormat format_of(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".glb") return GltfFormat::glb;
+  if (extension == ".gltf") return GltfFormat::gltf;
+  throw IoError(path.string(), detail::message("write_gltf: unknown extension \"", path.extension().string(),
+                                               "\" (expected .glb or .gltf)"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading
+
+// tinygltf decodes images while loading; we read no image, so we skip them undecoded.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+// What an accessor may hold.
+enum class Components {
+  floats,     // float
+  texcoords,  // float, or normalised unsigned byte / unsigned short
+  indices,    // unsigned byte, unsigned short or unsigned int, not normalised
+};
+
+// The accessors of one loaded model, read as doubles with every range checked.
+class AccessorReader {
+ public:
+  AccessorReader(const tinygltf::Model& model, std::string name) : model_(model), name_(std::move(name)) {}
+
+  [[noreturn]] void fail(const std::string& message) const { throw ParseError(name_, 0, 0, message); }
+
+  /// The values of accessor `index` (`components` per element, `count` elements), flat.
+  std::vector<double> values(int index, int components, Components allowed, const std::string& what) const {
+    if (index < 0 || static_cast<std::size_t>(index) >= model_.accessors.size()) {
+      fail(detail::message(what, ": accessor ", index, " does not exist"));
+    }
+    const tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(index)];
+    const std::string where = detail::message(what, " (accessor ", index, ")");
+    if (accessor.sparse.isSparse) fail(where + ": sparse accessors are not supported");
+    const int type = components == 1 ? TINYGLTF_TYPE_SCALAR : components;
+    if (accessor.type != type) fail(detail::message(where, ": type ", accessor.type, ", expected ", type));
+    const int component_size = checked_component_size(accessor, allowed, where);
+    if (accessor.count == 0) fail(where + ": no elements");
+    if (accessor.bufferView < 0 || static_cast<std::size_t>(accessor.bufferView) >= model_.bufferViews.size()) {
+      fail(where + ": no bufferView");
+    }
+    const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
+    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model_.buffers.size()) {
+      fail(where + ": its bufferView has no buffer");
+    }
+    const std::vector<unsigned char>& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
+    const std::uint64_t element_size = static_cast<std::uint64_t>(component_size) * static_cast<std::uint64_t>(components);
+    const std::uint64_t stride = view.byteStride != 0 ? view.byteStride : element_size;
+    if (stride < element_size) fail(detail::message(where, ": byteStride ", stride, " < element size ", element_size));
+    // view within the buffer, accessor within the view (no product can overflow: count is
+    // compared with the view's length first).
+    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset ||
+        accessor.byteOffset > view.byteLength || element_size > view.byteLength - accessor.byteOffset ||
+        accessor.count - 1 > (view.byteLength - accessor.byteOffset - element_size) / stride) {
+      fail(where + ": data outside its bufferView or buffer");
+    }
+    const unsigned char* base = data.data() + view.byteOffset + accessor.byteOffset;
+    std::vector<double> out;
+    out.reserve(accessor.count * static_cast<std::size_t>(components));
+    for (std::size_t e = 0; e < accessor.count; ++e) {
+      for (int c = 0; c < components; ++c) {
+        out.push_back(component(base + e * stride + static_cast<std::size_t>(c * component_size), accessor));
+      }
+    }
+    return out;
+  }
+
+  /// The number of elements of accessor `index` (which exists: values() was called on it).
+  std::size_t count(int index) const { return model_.accessors[static_cast<std::size_t>(index)].count; }
+
+ private:
+  int checked_component_size(const tinygltf::Accessor& accessor, Components allowed, const std::string& where) const {
+    const int type = accessor.componentType;
+    const bool is_float = type == TINYGLTF_COMPONENT_TYPE_FLOAT && !accessor.normalized;
+    const bool small_unsigned =
+        type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    bool ok = false;
+    switch (allowed) {
+      case Components::floats:
+        ok = is_float;
+        break;
+      case Components::texcoords:
+        ok = is_float || (small_unsigned && accessor.normalized);
+        break;
+      case Components::indices:
+        ok = (small_unsigned || type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) && !accessor.normalized;
+        break;
+    }
+    if (!ok) {
+      fail(detail::message(where, ": componentType ", type, accessor.normalized ? " (normalized)" : "", " not allowed here"));
+    }
+    return type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1 : type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2 : 4;
+  }
+
+  // One component as a double; normalised integers map to [0, 1].
+  static double component(const unsigned char* at, const tinygltf::Accessor& accessor) {
+    switch (accessor.componentType) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float x;
+        std::memcpy(&x, at, sizeof x);
+        return x;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return accessor.normalized ? *at / 255.0 : *at;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t x;
+        std::memcpy(&x, at, sizeof x);
+        return accessor.normalized ? x / 65535.0 : x;
+      }
+      default: {
+        std::uint32_t x;
+        std::memcpy(&x, at, sizeof x);
+        return x;
+      }
+    }
+  }
+
+  const tinygltf::Model& model_;
+  std::string name_;
+};
+
+// A direction read from a file: back to Z-up, renormalised if more than 1e-6 from unit length.
+Vec3 read_direction(const double* xyz, bool z_up, const AccessorReader& reader, const char* what, std::size_t v) {
+  Vec3 d = from_gltf_axes(Vec3(xyz[0], xyz[1], xyz[2]), z_up);
+  if (!d.allFinite()) reader.fail(detail::message(what, " of vertex ", v, " is not finite"));
+  const double length = d.norm();
+  if (length == 0) reader.fail(detail::message(what, " of vertex ", v, " is zero"));
+  if (std::abs(length - 1) > 1e-6) d /= length;
+  return d;
+}
+
+// Position ids welding equal positions: each vertex gets the first vertex with its position.
+std::vector<std::uint32_t> weld_equal_positions(const std::vector<Vec3>& positions) {
+  std::vector<std::uint32_t> order(positions.size());
+  std::iota(order.begin(), order.end(), 0u);
+  // Lexicographic on values (-0 == +0); stable, so each run of equal positions starts at its
+  // smallest vertex.
+  const auto less = [&](std::uint32_t a, std::uint32_t b) {
+    const Vec3& p = positions[a];
+    const Vec3& q = positions[b];
+    return std::tie(p.x(), p.y(), p.z()) < std::tie(q.x(), q.y(), q.z());
+  };
+  std::stable_sort(order.begin(), order.end(), less);
+  std::vector<std::uint32_t> ids(positions.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const bool starts_run = k == 0 || less(order[k - 1], order[k]);
+    ids[order[k]] = starts_run ? order[k] : ids[order[k - 1]];
+  }
+  return ids;
+}
+
+}  // namespace
+
+std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOptions& options) {
+  validate(mesh);
+  if (mesh.triangle_count() == 0) {
+    throw InvalidInput("format_gltf: the mesh has no triangle (glTF accessors hold at least one element)");
+  }
+  if (!mesh.tangents.empty() && mesh.normals.empty()) {
+    throw InvalidInput("format_gltf: the mesh has tangents but no normals (glTF ignores tangents without normals)");
+  }
+  // At most 65535 vertices: indices up to 65534, so the restart value 65535 never appears (the
+  // same holds for 32 bits: validate() allows at most 2^32 - 2 vertices).
+  const bool short_indices = mesh.vertex_count() <= 0xffff;
+  const std::uint64_t bytes = buffer_bytes(mesh, short_indices ? 2 : 4);
+  if (bytes > max_buffer_bytes) {
+    throw InvalidInput(detail::message("format_gltf: the buffer would take ", bytes, " bytes, more than a glTF buffer can hold"));
+  }
+
+  GltfBuilder builder;
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  primitive.material = 0;
+  add_attributes(builder, primitive, mesh, options.z_up);
+  if (short_indices) {
+    const std::vector<std::uint16_t> indices(mesh.indices.begin(), mesh.indices.end());
+    primitive.indices = builder.add(indices, 1, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  } else {
+    primitive.indices = builder.add(mesh.indices, 1, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  }
+
+  tinygltf::Model& model = builder.model();
+  model.asset.version = "2.0";
+  model.asset.generator = "patchwork";
+  model.materials.push_back(default_material(options.double_sided.value_or(has_boundary_edge(mesh))));
+  tinygltf::Mesh gltf_mesh;
+  gltf_mesh.name = options.name;
+  gltf_mesh.primitives.push_back(std::move(primitive));
+  model.meshes.push_back(std::move(gltf_mesh));
+  tinygltf::Node node;
+  node.name = options.name;
+  node.mesh = 0;
+  model.nodes.push_back(std::move(node));
+  tinygltf::Scene scene;
+  scene.nodes = {0};
+  model.scenes.push_back(std::move(scene));
+  model.defaultScene = 0;
+
+  std::ostringstream out;
+  tinygltf::TinyGLTF writer;
+  const bool binary = format == GltfFormat::glb;
+  // Writing to a stream fails only for images, and there are none.
+  [[maybe_unused]] const bool written = writer.WriteGltfSceneToStream(&model, out, !binary, binary);
+  PATCHWORK_ASSERT(written && out, "tinygltf failed to serialise a model without images");
+  std::string content = std::move(out).str();
+  if (content.size() > 0xffffffffu) {
+    throw InvalidInput(detail::message("format_gltf: the file would take ", content.size(), " bytes, more than 4 GiB"));
+  }
+  return content;
+}
+
+void write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options) {
+  const GltfFormat format = format_of(path);
+  write_file_atomically(path, format_gltf(mesh, format, options));
+}
+
+RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path, bool z_up) {
+  const std::string name = path.string();
+  if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
+    throw ParseError(name, 0, 0, "parse_gltf: larger than 4 GiB");
+  }
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(&skip_image, nullptr);
+  std::string error;
+  std::string warning;
+  const std::string folder = path.has_parent_path() ? path.parent_path().string() : std::string(".");
+  const auto size = static_cast<unsigned int>(bytes.size());
+  const bool loaded =
+      bytes.substr(0, 4) == "glTF"
+          ? loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        size, folder)
+          : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), size, folder);
+  while (!error.empty() && std::isspace(static_cast<unsigned char>(error.back()))) error.pop_back();
+  if (!loaded) throw ParseError(name, 0, 0, "not a glTF 2.0 file: " + error);
+
+  const AccessorReader reader(model, name);
+  if (!model.extensionsRequired.empty()) {
+    reader.fail("requires the extension " + model.extensionsRequired.front() + ", which parse_gltf does not read");
+  }
+  if (model.meshes.size() != 1) {
+    reader.fail(detail::message("parse_gltf reads one mesh of one primitive; the file has ", model.meshes.size(), " meshes"));
+  }
+  if (model.meshes[0].primitives.size() != 1) {
+    reader.fail(detail::message("parse_gltf reads one mesh of one primitive; the mesh has ",
+                                model.meshes[0].primitives.size(), " primitives"));
+  }
+  const tinygltf::Primitive& primitive = model.meshes[0].primitives[0];
+  if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
+    reader.fail(detail::message("primitive mode ", primitive.mode, " is not TRIANGLES (4)"));
+  }
+  const auto attribute = [&](const char* key) {
+    const auto found = primitive.attributes.find(key);
+    return found == primitive.attributes.end() ? -1 : found->second;
+  };
+  if (attribute("POSITION") < 0) reader.fail("the primitive has no POSITION");
+
+  RenderMesh mesh;
+  const std::vector<double> xyz = reader.values(attribute("POSITION"), 3, Components::floats, "POSITION");
+  const std::size_t n = reader.count(attribute("POSITION"));
+  if (n > detail::max_mesh_vertices) reader.fail(detail::message(n, " vertices exceed 32-bit ids"));
+  const auto per_vertex = [&](const char* key, int components, Components allowed) {
+    std::vector<double> values = reader.values(attribute(key), components, allowed, key);
+    if (reader.count(attribute(key)) != n) {
+      reader.fail(detail::message(key, " has ", reader.count(attribute(key)), " elements for ", n, " vertices"));
+    }
+    return values;
+  };
+  mesh.positions.reserve(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    mesh.positions.push_back(from_gltf_axes(Vec3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]), z_up));
+    if (!mesh.positions.back().allFinite()) reader.fail(detail::message("POSITION of vertex ", v, " is not finite"));
+  }
+  if (attribute("NORMAL") >= 0) {
+    const std::vector<double> values = per_vertex("NORMAL", 3, Components::floats);
+    for (std::size_t v = 0; v < n; ++v) mesh.normals.push_back(read_direction(&values[3 * v], z_up, reader, "NORMAL", v));
+  }
+  if (attribute("TEXCOORD_0") >= 0) {
+    const std::vector<double> values = per_vertex("TEXCOORD_0", 2, Components::texcoords);
+    for (std::size_t v = 0; v < n; ++v) {
+      mesh.uvs.emplace_back(values[2 * v], values[2 * v + 1]);
+      if (!mesh.uvs.back().allFinite()) reader.fail(detail::message("TEXCOORD_0 of vertex ", v, " is not finite"));
+    }
+  }
+  if (attribute("TANGENT") >= 0) {
+    const std::vector<double> values = per_vertex("TANGENT", 4, Components::floats);
+    for (std::size_t v = 0; v < n; ++v) {
+      const double w = values[4 * v + 3];
+      if (w != 1.0 && w != -1.0) reader.fail(detail::message("TANGENT of vertex ", v, " has w = ", w, ", not +1 or -1"));
+      Vec4 tangent;
+      tangent << read_direction(&values[4 * v], z_up, reader, "TANGENT", v), w;
+      mesh.tangents.push_back(tangent);
+    }
+  }
+  if (primitive.indices >= 0) {
+    const std::vector<double> indices = reader.values(primitive.indices, 1, Components::indices, "indices");
+    if (indices.size() % 3 != 0) reader.fail(detail::message(indices.size(), " indices are not whole triangles"));
+    mesh.indices.reserve(indices.size());
+    for (std::size_t k = 0; k < indices.size(); ++k) {
+      if (indices[k] >= static_cast<double>(n)) {
+        reader.fail(detail::message("triangle ", k / 3, " uses vertex ", indices[k], " of ", n));
+      }
+      mesh.indices.push_back(static_cast<std::uint32_t>(indices[k]));
+    }
+  } else {
+    if (n % 3 != 0) reader.fail(detail::message(n, " vertices without indices are not whole triangles"));
+    mesh.indices.resize(n);
+    std::iota(mesh.indices.begin(), mesh.indices.end(), 0u);
+  }
+  mesh.position_ids = weld_equal_positions(mesh.positions);
+  try {
+    validate(mesh);  // every condition was checked above; this keeps the reader honest
+  } catch (const InvalidInput& e) {
+    reader.fail(e.what());
+  }
+  return mesh;
+}
+
+RenderMesh read_gltf(const std::filesystem::path& path, bool z_up) { return parse_gltf(read_file(path), path, z_up); }
+
+}  // namespace patchwork

@@ -1,0 +1,92 @@
+#pragma once
+// glTF 2.0 output of a render mesh (meshes/render_mesh.h), and reading one triangle mesh back.
+//
+//   .glb   binary glTF: a 12-byte header, a JSON chunk and a BIN chunk holding the buffer
+//   .gltf  JSON only, the buffer embedded as a data: URI (one self-contained file)
+//
+// What write_gltf produces (the Khronos validator reports no error and no warning on it,
+// tests/io/gltf_test.cpp checks that with tools/gltf-validate):
+//   asset         version "2.0", generator "patchwork"
+//   scene 0       one node (named by GltfOptions::name) holding one mesh (the same name) of one
+//                 primitive, mode TRIANGLES, with material 0
+//   material 0    "default": pbrMetallicRoughness with baseColorFactor (0.8, 0.8, 0.8, 1),
+//                 metallicFactor 0, roughnessFactor 0.5; doubleSided as GltfOptions::double_sided
+//   attributes    POSITION (float VEC3, with min/max), NORMAL (float VEC3), TEXCOORD_0 (float
+//                 VEC2), TANGENT (float VEC4): each present when the mesh has it
+//   indices       UNSIGNED_SHORT when the mesh has at most 65535 vertices (so the restart value
+//                 65535 never appears), else UNSIGNED_INT
+//   buffer        one buffer; one bufferView per accessor, in the order above with the indices
+//                 last, each starting at a multiple of 4 bytes (zero padding), no byteStride,
+//                 target ARRAY_BUFFER (34962) for attributes, ELEMENT_ARRAY_BUFFER (34963) for
+//                 indices; the buffer's length is a multiple of 4
+//
+// Conventions. Units are meters, as in glTF. Triangles keep their order and their corners, so
+// counter-clockwise front faces stay front faces. patchwork is Z-up, glTF is Y-up: with z_up
+// set (the default) every position, normal and tangent direction (x, y, z) is written as
+// (x, z, -y) and read back as (X, -Z, Y), a rotation about +x by -90 degrees (so it keeps the
+// winding; negation is exact, so the map itself loses nothing). Values are stored as float32:
+//   positions  rounded to float; POSITION min/max are the min/max of the stored floats
+//   normals    normalised in double (validate() allows 1e-6 slack), then rounded to float once,
+//              so the stored length is 1 to within about 1e-7
+//   tangents   xyz as normals; w is +1 or -1 exactly
+//   uvs        rounded to float, written as they are (glTF puts uv (0, 0) at the top-left
+//              corner of an image; patchwork's uvs are surface parameters and are not flipped)
+// Reading a file written here therefore gives every value rounded to float and back, exactly.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "meshes/render_mesh.h"
+
+namespace patchwork {
+
+/// The two glTF containers.
+enum class GltfFormat {
+  glb,   ///< binary .glb
+  gltf,  ///< JSON .gltf with the buffer as a data: URI
+};
+
+/// How write_gltf orients, shows and names the mesh.
+struct GltfOptions {
+  /// The mesh is Z-up (patchwork's convention): write (x, y, z) as (x, z, -y) for glTF's +Y up.
+  bool z_up = true;
+  /// The material's doubleSided; unset: true exactly when the mesh has a boundary edge, an edge
+  /// of welded_faces(mesh) used by one triangle (an open surface shows its back side).
+  std::optional<bool> double_sided;
+  /// The name of the node and of the mesh.
+  std::string name = "patchwork";
+};
+
+/// The bytes of the glTF file of `mesh` in `format` (see the file comment for the layout).
+/// \throws InvalidInput if validate(mesh) fails, the mesh has no triangle (glTF accessors hold at
+///         least one element), it has tangents but no normals (glTF ignores tangents without
+///         normals), a value does not fit in a float, or the buffer would exceed 4 GiB.
+std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOptions& options = {});
+
+/// Writes `mesh` as .glb or .gltf, chosen by the extension (compared without regard to case),
+/// atomically (io/atomic_file.h): a failed write leaves no partial file.
+/// \throws IoError naming the path for another extension or a failed write; InvalidInput as
+///         format_gltf (nothing written).
+void write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options = {});
+
+/// Parses the bytes of a .glb or .gltf file (told apart by the "glTF" magic) written by anyone,
+/// holding exactly one mesh primitive, of mode TRIANGLES: POSITION (float), optional NORMAL
+/// (float), TEXCOORD_0 (float, or normalised unsigned byte/short) and TANGENT (float), indices
+/// unsigned byte/short/int or none (then vertices 0 1 2, 3 4 5, ...). Positions, normals and
+/// tangents are converted back to Z-up when `z_up` is set. Normals and tangents more than 1e-6
+/// from unit length are renormalised. position_ids weld vertices with equal positions (equal
+/// floats; -0 equals +0): a vertex's id is the first vertex with its position. Node transforms,
+/// materials and other attributes are not read. Buffers in other files are looked up beside
+/// `path`, which also names the file in messages.
+/// \throws ParseError naming `path` if the bytes are no such glTF (a required extension, sparse
+///         accessors, values that are not finite, a zero normal, tangent w other than +-1, an
+///         index out of range, data outside its buffer, a buffer file that cannot be read).
+RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path, bool z_up = true);
+
+/// Reads a .glb or .gltf file as parse_gltf does.
+/// \throws IoError if it cannot be read, ParseError (naming the file) if it is malformed.
+RenderMesh read_gltf(const std::filesystem::path& path, bool z_up = true);
+
+}  // namespace patchwork

@@ -1,0 +1,629 @@
+#include "io/gltf.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "io/atomic_file.h"
+
+namespace patchwork {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr int array_buffer = 34962;
+constexpr int element_array_buffer = 34963;
+constexpr int unsigned_short = 5123;
+constexpr int unsigned_int = 5125;
+
+// ---------------------------------------------------------------------------------------------
+// Meshes
+
+// x rounded to float and back. Through a volatile float: GCC 12.2 at -O2 drops the round trip
+// when its SLP vectorizer pairs two of them (Vec3(f32(p.x()), f32(p.z()), ...) came back
+// unrounded), and so would Eigen's cast<float>().cast<double>().
+double f32(double x) {
+  volatile float rounded = static_cast<float>(x);
+  return rounded;
+}
+
+// Position ids: each vertex gets the first vertex with an equal position.
+std::vector<std::uint32_t> first_equal_position(const std::vector<Vec3>& positions) {
+  std::vector<std::uint32_t> ids(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    ids[v] = static_cast<std::uint32_t>(v);
+    for (std::size_t w = 0; w < v; ++w) {
+      if (positions[w] == positions[v]) {
+        ids[v] = static_cast<std::uint32_t>(w);
+        break;
+      }
+    }
+  }
+  return ids;
+}
+
+// A cube of side 0.1 centred at (0.3, -0.2, 0.7) (coordinates no float holds exactly), one quad
+// of 4 vertices per side: split normals, uvs, tangents along increasing u. Side (n, t, b) has
+// corners centre + h n + h (s t + r b), s, r = -1, +1, uv ((s + 1)/2, (r + 1)/2), tangent (t, +1),
+// and (t, b, n) is right-handed (t x b = n), so (-,-) (+,-) (+,+) (-,+) is counter-clockwise seen
+// from outside. The -y side runs u the other way: uv ((1 - s)/2, ...) and tangent (-t, -1).
+RenderMesh cube() {
+  const Vec3 centre(0.3, -0.2, 0.7);
+  const double h = 0.05;
+  struct Side {
+    Vec3 n, t;
+  };
+  const Side sides[] = {{Vec3::UnitX(), Vec3::UnitY()}, {-Vec3::UnitX(), Vec3::UnitZ()},
+                        {Vec3::UnitY(), Vec3::UnitZ()}, {-Vec3::UnitY(), Vec3::UnitX()},
+                        {Vec3::UnitZ(), Vec3::UnitX()}, {-Vec3::UnitZ(), Vec3::UnitY()}};
+  RenderMesh mesh;
+  for (const Side& side : sides) {
+    const Vec3 b = side.n.cross(side.t);
+    const bool flipped = side.n == -Vec3::UnitY();
+    const auto first = static_cast<std::uint32_t>(mesh.positions.size());
+    for (const auto& [s, r] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+      mesh.positions.push_back(centre + h * side.n + h * (s * side.t + r * b));
+      mesh.normals.push_back(side.n);
+      mesh.uvs.emplace_back(flipped ? (1 - s) / 2.0 : (s + 1) / 2.0, (r + 1) / 2.0);
+      Vec4 tangent;
+      tangent << (flipped ? -side.t : side.t), flipped ? -1.0 : 1.0;
+      mesh.tangents.push_back(tangent);
+    }
+    for (const std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) mesh.indices.push_back(first + k);
+  }
+  mesh.position_ids = first_equal_position(mesh.positions);
+  return mesh;
+}
+
+// The square [0, 1]^2 at z = 0.25, two triangles counter-clockwise seen from +z, positions only.
+RenderMesh open_square() {
+  RenderMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0.25), Vec3(1, 0, 0.25), Vec3(1, 1, 0.25), Vec3(0, 1, 0.25)};
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  mesh.position_ids = {0, 1, 2, 3};
+  return mesh;
+}
+
+// A planar grid of columns x rows vertices at (0.01 i, 0.02 j, 0), normal +z, uv (i, j) scaled
+// to [0, 1], tangent (+x, +1); two triangles per cell, counter-clockwise seen from +z.
+RenderMesh grid(std::uint32_t columns, std::uint32_t rows) {
+  RenderMesh mesh;
+  for (std::uint32_t j = 0; j < rows; ++j) {
+    for (std::uint32_t i = 0; i < columns; ++i) {
+      mesh.positions.emplace_back(0.01 * i, 0.02 * j, 0.0);
+      mesh.normals.push_back(Vec3::UnitZ());
+      mesh.uvs.emplace_back(i / (columns - 1.0), j / (rows - 1.0));
+      mesh.tangents.emplace_back(1.0, 0.0, 0.0, 1.0);
+    }
+  }
+  for (std::uint32_t j = 0; j + 1 < rows; ++j) {
+    for (std::uint32_t i = 0; i + 1 < columns; ++i) {
+      const std::uint32_t a = j * columns + i;
+      const std::uint32_t c = a + columns + 1;
+      for (const std::uint32_t k : {a, a + 1, c, a, c, c - 1}) mesh.indices.push_back(k);
+    }
+  }
+  mesh.position_ids.resize(mesh.positions.size());
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) mesh.position_ids[v] = static_cast<std::uint32_t>(v);
+  return mesh;
+}
+
+// What a file written by write_gltf reads back as: every value rounded to float. (The test
+// meshes' normals and tangents are axis vectors, which floats hold exactly.)
+RenderMesh rounded(RenderMesh mesh) {
+  for (Vec3& p : mesh.positions) p = Vec3(f32(p.x()), f32(p.y()), f32(p.z()));
+  for (Vec2& uv : mesh.uvs) uv = Vec2(f32(uv.x()), f32(uv.y()));
+  return mesh;
+}
+
+// Where two meshes first differ, or "" if they are equal in every value.
+template <class T>
+std::string first_difference(const char* what, const std::vector<T>& a, const std::vector<T>& b) {
+  if (a.size() != b.size()) return detail::message(what, ": ", a.size(), " vs ", b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (!(a[k] == b[k])) {
+      std::ostringstream out;
+      out.precision(17);
+      out << what << "[" << k << "]: " << a[k] << " vs " << b[k];
+      std::string text = out.str();
+      std::replace(text.begin(), text.end(), '\n', ' ');
+      return text;
+    }
+  }
+  return "";
+}
+
+std::string first_difference(const RenderMesh& a, const RenderMesh& b) {
+  for (const std::string& difference :
+       {first_difference("positions", a.positions, b.positions), first_difference("normals", a.normals, b.normals),
+        first_difference("uvs", a.uvs, b.uvs), first_difference("tangents", a.tangents, b.tangents),
+        first_difference("indices", a.indices, b.indices),
+        first_difference("position_ids", a.position_ids, b.position_ids)}) {
+    if (!difference.empty()) return difference;
+  }
+  return "";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading the files by hand (glTF 2.0 specification, section 4.4 "Binary glTF Layout")
+
+std::uint32_t u32_at(const std::string& bytes, std::size_t offset) {
+  std::uint32_t x;
+  std::memcpy(&x, bytes.data() + offset, sizeof x);
+  return x;
+}
+
+// The JSON and the BIN chunk of a GLB, with its header, chunk lengths and chunk types checked:
+// magic "glTF", version 2, total length = file size, chunks 4-byte aligned and padded.
+struct Glb {
+  json document;
+  std::uint64_t bin_size = 0;
+};
+
+Glb parse_glb(const std::string& bytes) {
+  Glb glb;
+  EXPECT_GE(bytes.size(), 28u);
+  if (bytes.size() < 28) return glb;
+  EXPECT_EQ(u32_at(bytes, 0), 0x46546C67u) << "magic glTF";
+  EXPECT_EQ(u32_at(bytes, 4), 2u) << "version";
+  EXPECT_EQ(u32_at(bytes, 8), bytes.size()) << "total length";
+  const std::uint32_t json_length = u32_at(bytes, 12);
+  EXPECT_EQ(u32_at(bytes, 16), 0x4E4F534Au) << "first chunk JSON";
+  EXPECT_EQ(json_length % 4, 0u) << "JSON chunk padded to 4";
+  const std::size_t bin_header = 20 + static_cast<std::size_t>(json_length);
+  EXPECT_LE(bin_header + 8, bytes.size());
+  if (bin_header + 8 > bytes.size()) return glb;
+  glb.document = json::parse(bytes.substr(20, json_length));
+  const std::uint32_t bin_length = u32_at(bytes, bin_header);
+  EXPECT_EQ(bin_header % 4, 0u) << "BIN chunk starts at a multiple of 4";
+  EXPECT_EQ(u32_at(bytes, bin_header + 4), 0x004E4942u) << "second chunk BIN";
+  EXPECT_EQ(bin_length % 4, 0u) << "BIN chunk padded to 4";
+  EXPECT_EQ(bin_header + 8 + bin_length, bytes.size()) << "nothing after the BIN chunk";
+  glb.bin_size = bin_length;
+  return glb;
+}
+
+// The document's layout as io/gltf.h promises it, for `mesh` written with the defaults.
+void expect_layout(const json& document, const RenderMesh& mesh, std::uint64_t buffer_size) {
+  EXPECT_EQ(document["asset"]["version"], "2.0");
+  EXPECT_EQ(document["asset"]["generator"], "patchwork");
+  EXPECT_EQ(document["scene"], 0);
+  EXPECT_EQ(document["scenes"], json::parse(R"([{"nodes": [0]}])"));
+  EXPECT_EQ(document["nodes"], json::parse(R"([{"mesh": 0, "name": "patchwork"}])"));
+  ASSERT_EQ(document["meshes"].size(), 1u);
+  ASSERT_EQ(document["meshes"][0]["primitives"].size(), 1u);
+  const json& primitive = document["meshes"][0]["primitives"][0];
+  EXPECT_EQ(primitive["mode"], 4);
+  EXPECT_EQ(primitive["material"], 0);
+  EXPECT_EQ(primitive["attributes"].contains("NORMAL"), !mesh.normals.empty());
+  EXPECT_EQ(primitive["attributes"].contains("TEXCOORD_0"), !mesh.uvs.empty());
+  EXPECT_EQ(primitive["attributes"].contains("TANGENT"), !mesh.tangents.empty());
+
+  ASSERT_EQ(document["buffers"].size(), 1u);
+  const std::uint64_t length = document["buffers"][0]["byteLength"];
+  EXPECT_EQ(length % 4, 0u);
+  EXPECT_EQ(length, buffer_size);
+  const int indices = primitive["indices"];
+  const json& accessors = document["accessors"];
+  const json& views = document["bufferViews"];
+  EXPECT_EQ(views.size(), accessors.size()) << "one bufferView per accessor";
+  std::vector<bool> view_used(views.size(), false);
+  for (std::size_t a = 0; a < accessors.size(); ++a) {
+    SCOPED_TRACE(detail::message("accessor ", a));
+    const json& accessor = accessors[a];
+    EXPECT_EQ(accessor.value("byteOffset", 0), 0);
+    const std::size_t v = accessor["bufferView"];
+    ASSERT_LT(v, views.size());
+    EXPECT_FALSE(view_used[v]) << "bufferView " << v << " shared";
+    view_used[v] = true;
+    const json& view = views[v];
+    const std::uint64_t offset = view.value("byteOffset", 0);
+    EXPECT_EQ(offset % 4, 0u) << "bufferView " << v << " starts at " << offset;
+    EXPECT_FALSE(view.contains("byteStride"));
+    EXPECT_LE(offset + static_cast<std::uint64_t>(view["byteLength"]), length);
+    EXPECT_EQ(view["target"], static_cast<int>(a) == indices ? element_array_buffer : array_buffer);
+  }
+  EXPECT_EQ(accessors[indices]["componentType"], mesh.vertex_count() <= 65535 ? unsigned_short : unsigned_int);
+  EXPECT_EQ(accessors[indices]["count"], mesh.indices.size());
+  EXPECT_EQ(accessors[indices]["type"], "SCALAR");
+
+  // POSITION min/max: those of the stored floats, (x, y, z) stored as (x, z, -y).
+  const json& position = accessors[primitive["attributes"]["POSITION"].get<int>()];
+  std::vector<double> low(3, std::numeric_limits<double>::infinity());
+  std::vector<double> high(3, -std::numeric_limits<double>::infinity());
+  for (const Vec3& p : mesh.positions) {
+    const double stored[3] = {f32(p.x()), f32(p.z()), f32(-p.y())};
+    for (int c = 0; c < 3; ++c) {
+      low[c] = std::min(low[c], stored[c]);
+      high[c] = std::max(high[c], stored[c]);
+    }
+  }
+  EXPECT_EQ(position["min"].get<std::vector<double>>(), low);
+  EXPECT_EQ(position["max"].get<std::vector<double>>(), high);
+}
+
+// A test's own folder under the system's temp folder, removed with everything in it.
+class GltfFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    folder_ = fs::temp_directory_path() / ("patchwork_gltf_test_" + test + "_" + std::to_string(::getpid()));
+    fs::remove_all(folder_);
+    fs::create_directory(folder_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(folder_, ignored);
+  }
+  fs::path file(const std::string& name) const { return folder_ / name; }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder_)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  // Writes `mesh` as name.gltf, edits the JSON with `edit`, and saves it as edited.gltf.
+  template <class Edit>
+  fs::path edited(const RenderMesh& mesh, Edit edit) const {
+    write_gltf(file("original.gltf"), mesh);
+    json document = json::parse(read_file(file("original.gltf")));
+    edit(document);
+    write_file_atomically(file("edited.gltf"), document.dump());
+    return file("edited.gltf");
+  }
+
+  fs::path folder_;
+};
+
+std::string shell_quoted(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) {
+    if (c == '\'') {
+      quoted += "'\\''";
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "'";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing and reading back
+
+TEST_F(GltfFile, CubeReadsBackAsItsFloatRoundedValuesInBothContainers) {
+  const RenderMesh mesh = cube();
+  validate(mesh);
+  const RenderMesh expected = rounded(mesh);
+  // The test is not vacuous: float rounding changes the cube's coordinates.
+  ASSERT_NE(expected.positions[0], mesh.positions[0]);
+  for (const char* name : {"cube.glb", "cube.gltf", "UPPER.GLB", "Mixed.GlTf"}) {
+    SCOPED_TRACE(name);
+    write_gltf(file(name), mesh);
+    const RenderMesh back = read_gltf(file(name));
+    EXPECT_EQ(first_difference(back, expected), "");
+  }
+  EXPECT_EQ(read_file(file("cube.glb")), format_gltf(mesh, GltfFormat::glb));
+  EXPECT_EQ(read_file(file("UPPER.GLB")), format_gltf(mesh, GltfFormat::glb));
+  EXPECT_EQ(read_file(file("cube.gltf")), format_gltf(mesh, GltfFormat::gltf));
+  EXPECT_EQ(read_file(file("cube.gltf")).substr(0, 1), "{");
+  // The welded position ids: 8 corners for the 24 vertices.
+  std::vector<std::uint32_t> ids = read_gltf(file("cube.glb")).position_ids;
+  std::sort(ids.begin(), ids.end());
+  EXPECT_EQ(std::unique(ids.begin(), ids.end()) - ids.begin(), 8);
+  // No temporary file is left behind.
+  EXPECT_EQ(entries(), (std::vector<std::string>{"Mixed.GlTf", "UPPER.GLB", "cube.glb", "cube.gltf"}));
+}
+
+TEST(Gltf, GlbChunksAndBufferViewsAreAligned) {
+  // 3 u16 indices take 6 bytes, so the buffer ends off the 4-byte grid unless padded.
+  RenderMesh odd = open_square();
+  odd.indices.resize(3);
+  for (const RenderMesh& mesh : {cube(), open_square(), odd, grid(3, 3)}) {
+    SCOPED_TRACE(mesh.vertex_count());
+    const Glb glb = parse_glb(format_gltf(mesh, GltfFormat::glb));
+    expect_layout(glb.document, mesh, glb.bin_size);
+    EXPECT_FALSE(glb.document["buffers"][0].contains("uri"));
+  }
+}
+
+TEST(Gltf, GltfEmbedsTheBufferAsADataUri) {
+  for (const RenderMesh& mesh : {cube(), open_square()}) {
+    SCOPED_TRACE(mesh.vertex_count());
+    const json document = json::parse(format_gltf(mesh, GltfFormat::gltf));
+    const std::string uri = document["buffers"][0]["uri"];
+    const std::string prefix = "data:application/octet-stream;base64,";
+    EXPECT_EQ(uri.substr(0, prefix.size()), prefix);
+    const std::uint64_t length = document["buffers"][0]["byteLength"];
+    EXPECT_EQ((uri.size() - prefix.size()) * 3 / 4 - (uri.back() == '=') - (uri.ends_with("==")), length);
+    expect_layout(document, mesh, length);
+  }
+}
+
+TEST(Gltf, PositionMinMaxAreThoseOfTheStoredFloats) {
+  // Cube corners: x in 0.3 -+ 0.05, y in -0.2 -+ 0.05, z in 0.7 -+ 0.05; glTF (x, z, -y).
+  const json document = parse_glb(format_gltf(cube(), GltfFormat::glb)).document;
+  const json& position = document["accessors"][document["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()];
+  const std::vector<double> low = {f32(0.3 - 0.05), f32(0.7 - 0.05), f32(0.2 - 0.05)};
+  const std::vector<double> high = {f32(0.3 + 0.05), f32(0.7 + 0.05), f32(0.2 + 0.05)};
+  EXPECT_EQ(position["min"].get<std::vector<double>>(), low);
+  EXPECT_EQ(position["max"].get<std::vector<double>>(), high);
+  // ... which are not the doubles' min/max.
+  EXPECT_NE(position["max"][0].get<double>(), 0.3 + 0.05);
+}
+
+TEST(Gltf, IndicesAreUnsignedShortUpTo65535VerticesElseUnsignedInt) {
+  struct Case {
+    std::uint32_t columns, rows;
+    int component_type;
+  };
+  for (const Case& c : {Case{255, 257, unsigned_short}, Case{256, 256, unsigned_int}}) {
+    const RenderMesh mesh = grid(c.columns, c.rows);
+    SCOPED_TRACE(mesh.vertex_count());
+    ASSERT_EQ(mesh.vertex_count(), c.component_type == unsigned_short ? 65535u : 65536u);
+    ASSERT_EQ(*std::max_element(mesh.indices.begin(), mesh.indices.end()), mesh.vertex_count() - 1);
+    const std::string bytes = format_gltf(mesh, GltfFormat::glb);
+    const Glb glb = parse_glb(bytes);
+    const json& document = glb.document;
+    const int indices = document["meshes"][0]["primitives"][0]["indices"];
+    EXPECT_EQ(document["accessors"][indices]["componentType"], c.component_type);
+    expect_layout(document, mesh, glb.bin_size);
+    EXPECT_EQ(first_difference(parse_gltf(bytes, "grid.glb"), rounded(mesh)), "");
+  }
+}
+
+TEST(Gltf, DoubleSidedDefaultsToWhetherTheWeldedMeshHasABoundary) {
+  const auto double_sided = [](const RenderMesh& mesh, const GltfOptions& options) {
+    const json document = json::parse(format_gltf(mesh, GltfFormat::gltf, options));
+    return document["materials"][0].value("doubleSided", false);
+  };
+  // The cube's 24 render vertices alone leave every edge with one triangle; welded it is closed.
+  EXPECT_FALSE(double_sided(cube(), {}));
+  EXPECT_TRUE(double_sided(open_square(), {}));
+  EXPECT_TRUE(double_sided(grid(3, 4), {}));
+  RenderMesh cube_without_a_side = cube();
+  cube_without_a_side.indices.resize(cube_without_a_side.indices.size() - 6);
+  EXPECT_TRUE(double_sided(cube_without_a_side, {}));
+  GltfOptions forced;
+  forced.double_sided = true;
+  EXPECT_TRUE(double_sided(cube(), forced));
+  forced.double_sided = false;
+  EXPECT_FALSE(double_sided(open_square(), forced));
+}
+
+TEST(Gltf, SceneAndMaterialAreTheDefaults) {
+  GltfOptions options;
+  options.name = "teapot";
+  const json document = json::parse(format_gltf(open_square(), GltfFormat::gltf, options));
+  EXPECT_EQ(document["nodes"], json::parse(R"([{"mesh": 0, "name": "teapot"}])"));
+  EXPECT_EQ(document["meshes"][0]["name"], "teapot");
+  ASSERT_EQ(document["materials"].size(), 1u);
+  const json& pbr = document["materials"][0]["pbrMetallicRoughness"];
+  EXPECT_EQ(pbr["baseColorFactor"], json::parse("[0.8, 0.8, 0.8, 1.0]"));
+  EXPECT_EQ(pbr["metallicFactor"], 0.0);
+  EXPECT_EQ(pbr["roughnessFactor"], 0.5);
+  EXPECT_EQ(document["materials"][0].value("alphaMode", "OPAQUE"), "OPAQUE");
+}
+
+TEST(Gltf, ZUpIsWrittenAsYUpKeepingTheWinding) {
+  const RenderMesh mesh = cube();
+  const std::string bytes = format_gltf(mesh, GltfFormat::glb);
+  const RenderMesh raw = parse_gltf(bytes, "cube.glb", /*z_up=*/false);
+  ASSERT_EQ(raw.vertex_count(), mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    SCOPED_TRACE(v);
+    const Vec3& p = mesh.positions[v];
+    EXPECT_EQ(raw.positions[v], Vec3(f32(p.x()), f32(p.z()), f32(-p.y())));
+    const Vec3& n = mesh.normals[v];
+    EXPECT_EQ(raw.normals[v], Vec3(n.x(), n.z(), -n.y()));
+    const Vec4& t = mesh.tangents[v];
+    EXPECT_EQ(raw.tangents[v], Vec4(t.x(), t.z(), -t.y(), t.w()));
+  }
+  // Counter-clockwise seen from the normal's side, in glTF's coordinates too.
+  for (std::size_t f = 0; f < raw.triangle_count(); ++f) {
+    const Vec3& a = raw.positions[raw.indices[3 * f]];
+    const Vec3& b = raw.positions[raw.indices[3 * f + 1]];
+    const Vec3& c = raw.positions[raw.indices[3 * f + 2]];
+    EXPECT_GT((b - a).cross(c - a).dot(raw.normals[raw.indices[3 * f]]), 0) << "triangle " << f;
+  }
+  // Written without the map, the coordinates stay.
+  GltfOptions y_up;
+  y_up.z_up = false;
+  const RenderMesh same = parse_gltf(format_gltf(mesh, GltfFormat::glb, y_up), "cube.glb", false);
+  EXPECT_EQ(first_difference(same, rounded(mesh)), "");
+}
+
+TEST(Gltf, NormalsAndTangentsAreUnitAsStoredFloats) {
+  // validate() lets lengths be 1e-6 off; the stored floats must be unit to float precision.
+  RenderMesh mesh = open_square();
+  const double slack = 1 + 9e-7;
+  mesh.normals = {Vec3(0.6, 0, 0.8) * slack, Vec3(0, 0, 1) * slack, Vec3(1, 2, 2) / 3 * slack, Vec3(0, 0, 1)};
+  mesh.tangents = {Vec4(0, slack, 0, 1), Vec4(0.8 * slack, 0, -0.6 * slack, -1), Vec4(2, -2, 1, 3) / 3,
+                   Vec4(1, 0, 0, -1)};
+  mesh.tangents[2].w() = 1;
+  validate(mesh);
+  const RenderMesh raw = parse_gltf(format_gltf(mesh, GltfFormat::glb), "square.glb", false);
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    SCOPED_TRACE(v);
+    const Vec3 n = mesh.normals[v];
+    const Vec3 t = mesh.tangents[v].head<3>();
+    EXPECT_NEAR(raw.normals[v].norm(), 1.0, 2e-7);
+    EXPECT_NEAR(raw.tangents[v].head<3>().norm(), 1.0, 2e-7);
+    EXPECT_LT((raw.normals[v] - Vec3(n.x(), n.z(), -n.y()).normalized()).norm(), 2e-7);
+    EXPECT_LT((raw.tangents[v].head<3>() - Vec3(t.x(), t.z(), -t.y()).normalized()).norm(), 2e-7);
+    EXPECT_EQ(raw.tangents[v].w(), mesh.tangents[v].w());
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// What is refused
+
+TEST(Gltf, RefusesWhatGltfCannotHold) {
+  RenderMesh no_triangles = open_square();
+  no_triangles.indices.clear();
+  EXPECT_THROW(format_gltf(no_triangles, GltfFormat::glb), InvalidInput);
+  EXPECT_THROW(format_gltf(RenderMesh{}, GltfFormat::glb), InvalidInput);
+  RenderMesh out_of_range = open_square();
+  out_of_range.indices[5] = 4;
+  EXPECT_THROW(format_gltf(out_of_range, GltfFormat::glb), InvalidInput);
+  RenderMesh tangents_only = open_square();
+  tangents_only.tangents.assign(4, Vec4(1, 0, 0, 1));
+  EXPECT_THROW(format_gltf(tangents_only, GltfFormat::glb), InvalidInput);
+  RenderMesh too_far = open_square();
+  too_far.positions[2].x() = 1e39;
+  try {
+    format_gltf(too_far, GltfFormat::glb);
+    ADD_FAILURE() << "no InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("position of vertex 2"), std::string::npos) << e.what();
+  }
+  RenderMesh huge_uv = open_square();
+  huge_uv.uvs.assign(4, Vec2(0, 0));
+  huge_uv.uvs[1].y() = -1e300;
+  EXPECT_THROW(format_gltf(huge_uv, GltfFormat::gltf), InvalidInput);
+}
+
+TEST_F(GltfFile, FailedWritesLeaveNothingBehind) {
+  const fs::path missing = file("no such folder") / "cube.glb";
+  try {
+    write_gltf(missing, cube());
+    ADD_FAILURE() << "no IoError";
+  } catch (const IoError& e) {
+    EXPECT_EQ(e.path(), missing.string());
+  }
+  EXPECT_FALSE(fs::exists(file("no such folder")));
+  // The target is a folder: the rename fails and the temporary file goes.
+  fs::create_directory(file("taken.glb"));
+  EXPECT_THROW(write_gltf(file("taken.glb"), cube()), IoError);
+  // A mesh glTF cannot hold, and an unknown extension: nothing written, an older file intact.
+  write_gltf(file("kept.gltf"), open_square());
+  const std::string before = read_file(file("kept.gltf"));
+  RenderMesh empty = open_square();
+  empty.indices.clear();
+  EXPECT_THROW(write_gltf(file("kept.gltf"), empty), InvalidInput);
+  EXPECT_EQ(read_file(file("kept.gltf")), before);
+  for (const char* name : {"cube.obj", "cube", "cube.glb.tmp"}) {
+    SCOPED_TRACE(name);
+    try {
+      write_gltf(file(name), cube());
+      ADD_FAILURE() << "no IoError";
+    } catch (const IoError& e) {
+      EXPECT_EQ(e.path(), file(name).string());
+    }
+  }
+  EXPECT_EQ(entries(), (std::vector<std::string>{"kept.gltf", "taken.glb"}));
+  EXPECT_TRUE(fs::is_empty(file("taken.glb")));
+}
+
+TEST_F(GltfFile, ReadErrorsNameTheFile) {
+  const auto expect_parse_error = [](const fs::path& path, const std::string& part) {
+    try {
+      read_gltf(path);
+      ADD_FAILURE() << "no ParseError for " << path;
+    } catch (const ParseError& e) {
+      EXPECT_EQ(e.path(), path.string());
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  try {
+    read_gltf(file("missing.glb"));
+    ADD_FAILURE() << "no IoError";
+  } catch (const IoError& e) {
+    EXPECT_EQ(e.path(), file("missing.glb").string());
+  }
+  write_file_atomically(file("text.gltf"), "hello");
+  expect_parse_error(file("text.gltf"), "not a glTF 2.0 file");
+  const std::string glb = format_gltf(cube(), GltfFormat::glb);
+  write_file_atomically(file("truncated.glb"), glb.substr(0, glb.size() / 2));
+  expect_parse_error(file("truncated.glb"), "not a glTF 2.0 file");
+
+  const auto primitive = [](json& document) -> json& { return document["meshes"][0]["primitives"][0]; };
+  expect_parse_error(edited(open_square(), [&](json& d) { primitive(d)["mode"] = 0; }), "mode 0");
+  expect_parse_error(edited(open_square(), [&](json& d) { d["meshes"][0]["primitives"].push_back(primitive(d)); }),
+                     "2 primitives");
+  // Two vertices left for indices up to 3.
+  expect_parse_error(edited(open_square(), [&](json& d) { d["accessors"][0]["count"] = 2; }), "uses vertex 2 of 2");
+  // An accessor reaching past its bufferView.
+  expect_parse_error(edited(open_square(), [&](json& d) { d["accessors"][0]["byteOffset"] = 4; }),
+                     "outside its bufferView");
+  expect_parse_error(edited(cube(), [&](json& d) { d["accessors"][primitive(d)["attributes"]["NORMAL"].get<int>()]["count"] = 23; }),
+                     "NORMAL has 23 elements for 24 vertices");
+  expect_parse_error(edited(open_square(), [&](json& d) { d["extensionsRequired"] = {"KHR_draco_mesh_compression"}; }),
+                     "KHR_draco_mesh_compression");
+}
+
+TEST_F(GltfFile, ReadsATrianglePrimitiveWithoutIndices) {
+  RenderMesh triangle = open_square();
+  triangle.positions.pop_back();
+  triangle.position_ids.pop_back();
+  triangle.indices = {0, 1, 2};
+  const fs::path path = edited(triangle, [](json& d) { d["meshes"][0]["primitives"][0].erase("indices"); });
+  EXPECT_FALSE(json::parse(read_file(path))["meshes"][0]["primitives"][0].contains("indices"));
+  EXPECT_EQ(first_difference(read_gltf(path), rounded(triangle)), "");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The Khronos glTF validator (tools/gltf-validate, installed by scripts/setup)
+
+TEST_F(GltfFile, KhronosValidatorReportsNoErrorAndNoWarning) {
+  const fs::path tool = fs::path(PATCHWORK_SOURCE_DIR) / "tools" / "gltf-validate";
+  if (std::system("node --version > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "node is not installed (scripts/setup installs nodejs and the validator)";
+  }
+  if (!fs::exists(tool / "node_modules" / "gltf-validator")) {
+    GTEST_SKIP() << "the validator is not installed: run npm ci in " << tool << " (scripts/setup does)";
+  }
+  RenderMesh uvs_only = open_square();
+  uvs_only.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  RenderMesh odd = open_square();
+  odd.indices.resize(3);
+  odd.positions.pop_back();
+  odd.position_ids.pop_back();
+  const std::vector<std::pair<std::string, RenderMesh>> files = {
+      {"cube.glb", cube()},         {"cube.gltf", cube()},      {"square.glb", open_square()},
+      {"square.gltf", open_square()}, {"uvs.glb", uvs_only},    {"triangle.glb", odd},
+      {"grid65535.glb", grid(255, 257)}, {"grid65536.glb", grid(256, 256)}};
+  // The exit status of validate.js on `path`, and what it printed.
+  const auto validate_file = [&](const fs::path& path) {
+    const fs::path log = path.string() + ".log";
+    const std::string command = "node " + shell_quoted((tool / "validate.js").string()) + " " +
+                                shell_quoted(path.string()) + " > " + shell_quoted(log.string()) + " 2>&1";
+    const int status = std::system(command.c_str());
+    return std::pair{status, read_file(log)};
+  };
+  for (const auto& [name, mesh] : files) {
+    SCOPED_TRACE(name);
+    write_gltf(file(name), mesh);
+    const auto [status, report] = validate_file(file(name));
+    EXPECT_EQ(status, 0) << report;
+    EXPECT_NE(report.find("0 errors, 0 warnings"), std::string::npos) << report;
+    std::cout << report;
+  }
+  // The check can fail: a wrong POSITION max is an error, tangents without normals a warning.
+  const auto [error_status, error_report] = validate_file(edited(cube(), [](json& d) {
+    d["accessors"][0]["max"][0] = 1.0;
+  }));
+  EXPECT_NE(error_status, 0) << error_report;
+  EXPECT_NE(error_report.find("ACCESSOR_MAX_MISMATCH"), std::string::npos) << error_report;
+  const auto [warning_status, warning_report] = validate_file(edited(cube(), [](json& d) {
+    d["meshes"][0]["primitives"][0]["attributes"].erase("NORMAL");
+  }));
+  EXPECT_NE(warning_status, 0) << warning_report;
+  EXPECT_NE(warning_report.find("0 errors, 1 warnings"), std::string::npos) << warning_report;
+}
+
+}  // namespace
+}  // namespace patchwork
