@@ -54,7 +54,7 @@ struct GltfOptions {
   bool z_up = true;
   /// The material's doubleSided; unset: true exactly when the mesh has a boundary edge, an edge
   /// of welded_faces(mesh) used by one triangle (an open surface shows its back side).
-  std::optional<bool> double_sided;
+  std::optional<bool> double_sided = std::nullopt;
   /// The name of the node and of the mesh.
   std::string name = "patchwork";
 };
