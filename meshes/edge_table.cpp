@@ -84,7 +84,7 @@ void match_bucket(std::vector<Walk>& walks, Matches& out) {
 
 }  // namespace
 
-EdgeTable::EdgeTable(const FaceVertexMesh& mesh) : mesh_(&mesh) {
+EdgeTable::EdgeTable(const FaceVertexMesh& mesh, std::size_t capacity) : mesh_(&mesh) {
   const std::vector<std::uint32_t>& index = mesh.face_indices();
   const std::size_t corners = index.size();
   if (corners >= crowded) throw TopologyError(message("edge table: ", corners, " corners exceed 32-bit corner ids"));
@@ -113,9 +113,12 @@ EdgeTable::EdgeTable(const FaceVertexMesh& mesh) : mesh_(&mesh) {
   std::vector<std::uint32_t> start(mesh.vertex_count() + 2, 0);
   for_each_corner([&](std::uint32_t, std::uint32_t smaller) { ++start[smaller + 2]; });
   for (std::size_t v = 2; v < start.size(); ++v) start[v] += start[v - 1];
-  std::vector<std::uint32_t> bucketed(corners);
+  std::vector<std::uint32_t> bucketed;  // becomes first_use_
+  bucketed.reserve(std::max(capacity, corners));
+  bucketed.resize(corners);
   for_each_corner([&](std::uint32_t c, std::uint32_t smaller) { bucketed[start[smaller + 1]++] = c; });
   // 2. Match each bucket by the larger vertex.
+  twin_.reserve(std::max(capacity, corners));
   twin_.resize(corners);
   leaders_.assign(corners / 64 + 1, 0);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> crowded_pairs;
@@ -150,6 +153,14 @@ EdgeTable::EdgeTable(const FaceVertexMesh& mesh) : mesh_(&mesh) {
   crowded_corners_.reserve(crowded_uses_.size());
   for (const auto& [edge, corner] : crowded_uses_) crowded_corners_.emplace_back(corner, edge);
   std::sort(crowded_corners_.begin(), crowded_corners_.end());
+}
+
+EdgeTable::Arrays EdgeTable::release() noexcept {
+  Arrays arrays{std::move(twin_), std::move(first_use_), std::move(rank_)};
+  leaders_ = {};
+  crowded_uses_ = {};
+  crowded_corners_ = {};
+  return arrays;
 }
 
 std::uint32_t EdgeTable::edge_of(std::uint32_t c) const noexcept {

@@ -39,8 +39,20 @@ class EdgeTable {
   static constexpr std::uint32_t none = 0xffffffffu;
   static constexpr std::uint32_t crowded = 0xfffffffeu;
 
+  /// The table of `mesh`; its per-corner arrays get room for `capacity` entries (see release()).
   /// \throws TopologyError if the mesh has 2^32 - 2 corners or more (corner ids are 32-bit).
-  explicit EdgeTable(const FaceVertexMesh& mesh);
+  explicit EdgeTable(const FaceVertexMesh& mesh, std::size_t capacity = 0);
+
+  /// The table's large arrays, their memory touched already, for a caller to reuse (HalfedgeMesh
+  /// turns them into its own): twin per corner, first_use per edge (in an array with a corner's
+  /// room), and an array with room for a vertex's worth of entries. Afterwards only face_of(),
+  /// next_corner() and prev_corner() may be called.
+  struct Arrays {
+    std::vector<std::uint32_t> twin;
+    std::vector<std::uint32_t> first_use;
+    std::vector<std::uint32_t> spare;
+  };
+  Arrays release() noexcept;
 
   /// The walks along one edge in corner order, as EdgeUse values.
   class Uses {

@@ -57,7 +57,7 @@ void FaceVertexMesh::validate() const {
   }
 }
 
-std::optional<std::uint32_t> detail::repeated_vertex_by_sorting(std::span<const std::uint32_t> face) {
+std::optional<std::uint32_t> detail::smallest_repeated_vertex(std::span<const std::uint32_t> face) {
   std::vector<std::uint32_t> corners(face.begin(), face.end());
   std::sort(corners.begin(), corners.end());
   const auto repeated = std::adjacent_find(corners.begin(), corners.end());

@@ -68,20 +68,20 @@ class FaceVertexMesh {
 };
 
 namespace detail {
-std::optional<std::uint32_t> repeated_vertex_by_sorting(std::span<const std::uint32_t> face);
+std::optional<std::uint32_t> smallest_repeated_vertex(std::span<const std::uint32_t> face);
 }  // namespace detail
 
 /// The smallest vertex that `face` lists more than once, or nullopt if its corners are distinct.
 inline std::optional<std::uint32_t> repeated_vertex(std::span<const std::uint32_t> face) {
-  // Small faces (nearly all) by comparing every pair, without allocating; large ones sorted.
-  if (face.size() > 16) return detail::repeated_vertex_by_sorting(face);
-  std::optional<std::uint32_t> smallest;
+  // Small faces (nearly all) answer by comparing pairs, inline and without allocating.
+  if (face.size() == 3 && face[0] != face[1] && face[1] != face[2] && face[0] != face[2]) return std::nullopt;
+  if (face.size() > 16) return detail::smallest_repeated_vertex(face);
   for (std::size_t k = 0; k < face.size(); ++k) {
     for (std::size_t j = k + 1; j < face.size(); ++j) {
-      if (face[k] == face[j] && (!smallest || face[k] < *smallest)) smallest = face[k];
+      if (face[k] == face[j]) return detail::smallest_repeated_vertex(face);
     }
   }
-  return smallest;
+  return std::nullopt;
 }
 
 }  // namespace patchwork

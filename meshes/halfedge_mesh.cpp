@@ -9,11 +9,14 @@
 namespace patchwork {
 namespace {
 
+constexpr std::uint32_t invalid = HalfedgeId::invalid_value;
+
 // The faces with a corner at v, ascending, as "3, 8, 12": error messages name them.
-std::string faces_around(const std::vector<VertexId>& origin, const std::vector<FaceId>& face, std::uint32_t v) {
+std::string faces_around(const std::vector<std::uint32_t>& origin, const std::vector<std::uint32_t>& face,
+                         std::uint32_t v) {
   std::vector<std::uint32_t> faces;
   for (std::size_t h = 0; h < origin.size(); ++h) {
-    if (origin[h].value == v && face[h].valid()) faces.push_back(face[h].value);
+    if (origin[h] == v && face[h] != invalid) faces.push_back(face[h]);
   }
   std::sort(faces.begin(), faces.end());
   std::string list;
@@ -37,7 +40,8 @@ HalfedgeMesh::HalfedgeMesh(const FaceVertexMesh& mesh) : positions_(mesh.positio
     }
   }
   // 2. Edges: each undirected edge may be used at most twice, once in each direction.
-  const detail::EdgeTable table(mesh);
+  // (The table's arrays get room for the half-edges, up to two per corner: see step 3.)
+  detail::EdgeTable table(mesh, 2 * index.size());
   const std::size_t edges = table.edge_count();
   for (std::size_t e = 0; e < edges; ++e) {
     const std::uint32_t first = table.first_use(e);
@@ -56,63 +60,68 @@ HalfedgeMesh::HalfedgeMesh(const FaceVertexMesh& mesh) : positions_(mesh.positio
                                           ": inconsistent orientation (or a non-orientable surface)"));
     }
   }
-  // 3. Half-edges: 2e in the direction of the edge's first use, 2e+1 the other way. Until the
-  // faces are linked, prev_[c] holds corner c's half-edge: scratch in memory the mesh needs
-  // anyway (there are at least as many half-edges as corners), every entry overwritten below.
+  // 3. Half-edges: 2e in the direction of the edge's first use, 2e+1 the other way. The table's
+  // arrays become the mesh's, whose memory is touched already (at a million faces fresh pages
+  // cost more than the work): the twins turn into each corner's half-edge and then into prev_,
+  // the first uses into next_, the spare array into vertex_halfedge_.
   const std::size_t halfedges = 2 * edges;
+  detail::EdgeTable::Arrays arrays = table.release();
+  std::vector<std::uint32_t>& corner_halfedge = arrays.twin;
   origin_.resize(halfedges);
-  face_.resize(halfedges);
-  next_.resize(halfedges);
-  prev_.resize(halfedges);
+  face_.assign(halfedges, invalid);
   for (std::uint32_t e = 0; e < edges; ++e) {
-    const std::uint32_t first = table.first_use(e);
-    const std::uint32_t second = table.twin(first);
-    origin_[2 * e] = VertexId(index[first]);
-    origin_[2 * e + 1] = VertexId(index[table.next_corner(first)]);
-    face_[2 * e] = FaceId(table.face_of(first));
-    prev_[first] = HalfedgeId(2 * e);
+    const std::uint32_t first = arrays.first_use[e];
+    const std::uint32_t second = corner_halfedge[first];  // still the twin: only e's corners are rewritten here
+    origin_[2 * e] = index[first];
+    origin_[2 * e + 1] = index[table.next_corner(first)];
+    face_[2 * e] = table.face_of(first);
+    corner_halfedge[first] = 2 * e;
     if (second != detail::EdgeTable::none) {
-      face_[2 * e + 1] = FaceId(table.face_of(second));
-      prev_[second] = HalfedgeId(2 * e + 1);
+      face_[2 * e + 1] = table.face_of(second);
+      corner_halfedge[second] = 2 * e + 1;
     }
   }
+  next_ = std::move(arrays.first_use);
+  next_.resize(halfedges);  // every entry is written below (faces here, the boundary in step 4)
   face_halfedge_.resize(faces);
   for (std::size_t f = 0; f < faces; ++f) {
     const std::size_t first = mesh.first_corner(f), end = mesh.first_corner(f + 1);
-    face_halfedge_[f] = prev_[first];
-    for (std::size_t c = first; c + 1 < end; ++c) next_[prev_[c].index()] = prev_[c + 1];
-    next_[prev_[end - 1].index()] = prev_[first];
+    face_halfedge_[f] = corner_halfedge[first];
+    for (std::size_t c = first; c + 1 < end; ++c) next_[corner_halfedge[c]] = corner_halfedge[c + 1];
+    next_[corner_halfedge[end - 1]] = corner_halfedge[first];
   }
+  prev_ = std::move(corner_halfedge);
+  prev_.resize(halfedges);  // likewise
   for (std::uint32_t h = 0; h < halfedges; ++h) {
-    if (face_[h].valid()) prev_[next_[h].index()] = HalfedgeId(h);
+    if (face_[h] != invalid) prev_[next_[h]] = h;
   }
   // 4. Boundary half-edges: each boundary vertex has exactly one outgoing boundary half-edge on
   // a manifold; the one arriving at v continues with it.
-  vertex_halfedge_.assign(vertices, HalfedgeId());
+  vertex_halfedge_ = std::move(arrays.spare);
+  vertex_halfedge_.assign(vertices, invalid);
   std::vector<std::uint32_t> outgoing_count(vertices, 0);
-  for (std::uint32_t h = 0; h < origin_.size(); ++h) {
-    const VertexId v = origin_[h];
-    ++outgoing_count[v.index()];
-    if (!face_[h].valid()) {
-      if (vertex_halfedge_[v.index()].valid() && !face_[vertex_halfedge_[v.index()].index()].valid()) {
-        throw TopologyError(detail::message("HalfedgeMesh: vertex ", v.value,
-                                            " is on the boundary more than once (its faces ",
-                                            faces_around(origin_, face_, v.value), " form several fans)"));
+  for (std::uint32_t h = 0; h < halfedges; ++h) {
+    const std::uint32_t v = origin_[h];
+    ++outgoing_count[v];
+    if (face_[h] == invalid) {
+      if (vertex_halfedge_[v] != invalid && face_[vertex_halfedge_[v]] == invalid) {
+        throw TopologyError(detail::message("HalfedgeMesh: vertex ", v, " is on the boundary more than once (its faces ",
+                                            faces_around(origin_, face_, v), " form several fans)"));
       }
-      vertex_halfedge_[v.index()] = HalfedgeId(h);
-    } else if (!vertex_halfedge_[v.index()].valid()) {
-      vertex_halfedge_[v.index()] = HalfedgeId(h);
+      vertex_halfedge_[v] = h;
+    } else if (vertex_halfedge_[v] == invalid) {
+      vertex_halfedge_[v] = h;
     }
   }
-  for (std::uint32_t h = 0; h < origin_.size(); ++h) {
-    if (face_[h].valid()) continue;
-    const HalfedgeId following = vertex_halfedge_[origin_[h ^ 1u].index()];  // leaves destination(h)
+  for (std::uint32_t h = 0; h < halfedges; ++h) {
+    if (face_[h] != invalid) continue;
+    const std::uint32_t following = vertex_halfedge_[origin_[h ^ 1u]];  // leaves destination(h)
     next_[h] = following;
-    prev_[following.index()] = HalfedgeId(h);
+    prev_[following] = h;
   }
   // 5. Every vertex's half-edges must form one fan: one rotation visits all of them.
   for (std::uint32_t v = 0; v < vertices; ++v) {
-    const HalfedgeId start = vertex_halfedge_[v];
+    const HalfedgeId start(vertex_halfedge_[v]);
     if (!start.valid()) continue;
     std::uint32_t visited = 0;
     HalfedgeId h = start;

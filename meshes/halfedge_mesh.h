@@ -38,20 +38,20 @@ class HalfedgeMesh {
   std::size_t edge_count() const noexcept { return origin_.size() / 2; }
   std::size_t face_count() const noexcept { return face_halfedge_.size(); }
 
-  VertexId origin(HalfedgeId h) const noexcept { return origin_[h.index()]; }
-  VertexId destination(HalfedgeId h) const noexcept { return origin_[twin(h).index()]; }
+  VertexId origin(HalfedgeId h) const noexcept { return VertexId(origin_[h.index()]); }
+  VertexId destination(HalfedgeId h) const noexcept { return VertexId(origin_[twin(h).index()]); }
   static HalfedgeId twin(HalfedgeId h) noexcept { return HalfedgeId(h.value ^ 1u); }
-  HalfedgeId next(HalfedgeId h) const noexcept { return next_[h.index()]; }
-  HalfedgeId prev(HalfedgeId h) const noexcept { return prev_[h.index()]; }
+  HalfedgeId next(HalfedgeId h) const noexcept { return HalfedgeId(next_[h.index()]); }
+  HalfedgeId prev(HalfedgeId h) const noexcept { return HalfedgeId(prev_[h.index()]); }
   /// The face of h; invalid for a boundary half-edge (the outer face, -1 in Def 55).
-  FaceId face(HalfedgeId h) const noexcept { return face_[h.index()]; }
+  FaceId face(HalfedgeId h) const noexcept { return FaceId(face_[h.index()]); }
   static EdgeId edge(HalfedgeId h) noexcept { return EdgeId(h.value >> 1); }
   /// Half-edge 0 or 1 of an edge.
   static HalfedgeId halfedge(EdgeId e, int side) noexcept { return HalfedgeId(2 * e.value + static_cast<std::uint32_t>(side)); }
   /// An outgoing half-edge (the boundary one on the boundary); invalid for an isolated vertex.
-  HalfedgeId halfedge(VertexId v) const noexcept { return vertex_halfedge_[v.index()]; }
+  HalfedgeId halfedge(VertexId v) const noexcept { return HalfedgeId(vertex_halfedge_[v.index()]); }
   /// A half-edge of face f.
-  HalfedgeId halfedge(FaceId f) const noexcept { return face_halfedge_[f.index()]; }
+  HalfedgeId halfedge(FaceId f) const noexcept { return HalfedgeId(face_halfedge_[f.index()]); }
 
   bool is_boundary(HalfedgeId h) const noexcept { return !face(h).valid(); }
   bool is_boundary(EdgeId e) const noexcept { return is_boundary(halfedge(e, 0)) || is_boundary(halfedge(e, 1)); }
@@ -74,13 +74,15 @@ class HalfedgeMesh {
   void validate() const;
 
  private:
+  // The ids' values (the invalid id is 0xffffffff), as plain integers so that construction can
+  // take over the edge table's arrays.
   Positions positions_;
-  std::vector<VertexId> origin_;
-  std::vector<HalfedgeId> next_;
-  std::vector<HalfedgeId> prev_;
-  std::vector<FaceId> face_;
-  std::vector<HalfedgeId> vertex_halfedge_;
-  std::vector<HalfedgeId> face_halfedge_;
+  std::vector<std::uint32_t> origin_;
+  std::vector<std::uint32_t> next_;
+  std::vector<std::uint32_t> prev_;
+  std::vector<std::uint32_t> face_;
+  std::vector<std::uint32_t> vertex_halfedge_;
+  std::vector<std::uint32_t> face_halfedge_;
 };
 
 /// The face list of a half-edge mesh (faces in id order, each from halfedge(f)).

@@ -105,9 +105,8 @@ class FlipUnionFind {
 // The breadth-first walk from `root` over its orientation class (faces joined through edges of
 // exactly two faces), flipping faces to agree with the face they are reached from; the first
 // conflict found makes the component non-orientable, with the cycle that proves it.
-void walk_from(std::uint32_t root, const FaceVertexMesh& mesh, const EdgeTable& table,
-               const FaceComponents& components, std::vector<bool>& seen, std::vector<std::uint32_t>& parent,
-               std::vector<std::uint32_t>& queue, OrientationWalk& result) {
+void walk_from(std::uint32_t root, const FaceVertexMesh& mesh, const EdgeTable& table, std::vector<bool>& seen,
+               std::vector<std::uint32_t>& parent, std::vector<std::uint32_t>& queue, OrientationWalk& result) {
   const std::vector<std::uint32_t>& index = mesh.face_indices();
   std::vector<bool>& flip = result.flip;
   seen[root] = true;
@@ -132,7 +131,7 @@ void walk_from(std::uint32_t root, const FaceVertexMesh& mesh, const EdgeTable& 
         queue.push_back(other.face);
       } else if (flip[other.face] != needs_flip && !conflict_found) {
         conflict_found = true;
-        result.component_orientable[components.of_face[root]] = false;
+        result.component_orientable[result.components.of_face[root]] = false;
         // The cycle: f up to the common ancestor, then down to other.face.
         std::vector<std::uint32_t> up = path_to_root(f, parent);
         std::vector<std::uint32_t> down = path_to_root(other.face, parent);
@@ -151,17 +150,21 @@ void walk_from(std::uint32_t root, const FaceVertexMesh& mesh, const EdgeTable& 
 
 }  // namespace
 
-OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& table, const FaceComponents& components) {
+OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& table) {
   const std::vector<std::uint32_t>& index = mesh.face_indices();
   const auto faces = static_cast<std::uint32_t>(mesh.face_count());
-  OrientationWalk result{std::vector<bool>(faces, false), std::vector<bool>(components.count, true), {}};
-  // An orientable class has one consistent flip per face relative to its smallest face, whatever
-  // the order of the walk: the union-find finds them (and the classes that have none) in edge
-  // order, with far better locality than a breadth-first walk over a large mesh.
+  OrientationWalk result{{std::vector<std::uint32_t>(faces), 0}, std::vector<bool>(faces, false), {}, {}};
+  // Orientation classes: faces joined through edges of exactly two faces. An orientable class has
+  // one consistent flip per face relative to its smallest face, whatever the order of the walk:
+  // the union-find finds them (and the classes that have none) in edge order, with far better
+  // locality than a breadth-first walk over a large mesh.
   FlipUnionFind classes(faces);
   std::vector<std::uint32_t> conflicts;  // a face of each class with a conflict
+  bool crowded = false;
   for (std::size_t e = 0; e < table.edge_count(); ++e) {
-    if (!table.has_two_uses(e)) continue;
+    const std::uint32_t twin = table.twin(table.first_use(e));
+    crowded = crowded || twin == EdgeTable::crowded;
+    if (twin >= EdgeTable::crowded) continue;
     const auto [first, second] = table.first_two_uses(e);
     if (first.face == second.face) continue;  // a face meeting itself: no constraint
     // Two faces walking the edge the same way must differ in flip.
@@ -169,11 +172,16 @@ OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& ta
       conflicts.push_back(first.face);
     }
   }
+  // Without crowded edges (more than two faces), the classes are the edge-connected components.
+  FaceComponents& components = result.components;
   for (std::uint32_t f = 0; f < faces; ++f) {
     bool flip = false;
-    classes.find(f, flip);
+    const std::uint32_t root = classes.find(f, flip);
     result.flip[f] = flip;
+    components.of_face[f] = root == f ? static_cast<std::uint32_t>(components.count++) : components.of_face[root];
   }
+  if (crowded) components = face_components(mesh, table);
+  result.component_orientable.assign(components.count, true);
   if (conflicts.empty()) return result;
   // A non-orientable class has no consistent flips: its flips and the proving cycle are those of
   // the breadth-first walk from its smallest face, class by class in that order.
@@ -187,7 +195,7 @@ OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& ta
   std::vector<bool> seen(faces, false);
   std::vector<std::uint32_t> parent(faces);
   std::vector<std::uint32_t> queue;
-  for (std::uint32_t root : roots) walk_from(root, mesh, table, components, seen, parent, queue, result);
+  for (std::uint32_t root : roots) walk_from(root, mesh, table, seen, parent, queue, result);
   return result;
 }
 
@@ -212,7 +220,7 @@ Orientation oriented(const FaceVertexMesh& mesh, detail::OrientationWalk walk) {
 
 Orientation orient(const FaceVertexMesh& mesh) {
   const detail::EdgeTable table(mesh);
-  return oriented(mesh, detail::walk_orientation(mesh, table, detail::face_components(mesh, table)));
+  return oriented(mesh, detail::walk_orientation(mesh, table));
 }
 
 double signed_volume(const FaceVertexMesh& mesh) {
@@ -224,8 +232,9 @@ double signed_volume(const FaceVertexMesh& mesh) {
 Orientation orient_outward(const FaceVertexMesh& mesh) {
   // Flips change no edge's faces: one table serves the walk, the components and closedness.
   const detail::EdgeTable table(mesh);
-  const detail::FaceComponents components = detail::face_components(mesh, table);
-  Orientation result = oriented(mesh, detail::walk_orientation(mesh, table, components));
+  detail::OrientationWalk walk = detail::walk_orientation(mesh, table);
+  const detail::FaceComponents components = std::move(walk.components);
+  Orientation result = oriented(mesh, std::move(walk));
   const std::vector<std::uint32_t>& component = components.of_face;
   std::vector<bool> closed(components.count, true);
   for (std::size_t e = 0; e < table.edge_count(); ++e) {

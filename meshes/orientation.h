@@ -57,14 +57,15 @@ struct FaceComponents {
 };
 FaceComponents face_components(const FaceVertexMesh& mesh, const EdgeTable& table);
 
-/// orient()'s breadth-first walk without building the flipped mesh.
+/// What orient() finds, without the flipped mesh, and the edge-connected components with it.
 struct OrientationWalk {
+  FaceComponents components;
   /// flip[f]: whether face f is flipped.
   std::vector<bool> flip;
   std::vector<bool> component_orientable;
   std::vector<std::vector<FaceId>> non_orientable_cycles;
 };
-OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& table, const FaceComponents& components);
+OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& table);
 
 }  // namespace detail
 

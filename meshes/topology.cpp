@@ -145,9 +145,9 @@ std::vector<std::uint32_t> vertices_with_several_fans(const FaceVertexMesh& mesh
 
 TopologyReport analyze(const FaceVertexMesh& mesh) {
   const detail::EdgeTable table(mesh);
-  const detail::FaceComponents components = detail::face_components(mesh, table);
+  detail::OrientationWalk orientation = detail::walk_orientation(mesh, table);
+  const detail::FaceComponents& components = orientation.components;
   const std::vector<std::uint32_t>& component = components.of_face;
-  detail::OrientationWalk orientation = detail::walk_orientation(mesh, table, components);
 
   TopologyReport report{};
   report.faces = static_cast<Count>(mesh.face_count());
