@@ -10,15 +10,15 @@
 //   CGAL       Surface_mesh add_vertex/add_face from the same arrays + CGAL::is_closed,
 //              PMP::connected_components, PMP::extract_boundary_cycles, border half-edges, chi
 //
-// The mesh (a 500 x 1000 quad torus split into 1,000,000 triangles) is built once, outside the
-// timing. Items are triangles, so items/s compare directly. After the runs the program prints
-// time(OpenMesh) / time(patchwork) and time(CGAL) / time(patchwork), in CPU and wall time: a
-// ratio above 1 means patchwork is faster. patchwork_halfedge_only and patchwork_analyze_only
-// split our time between the two steps. Each benchmark checks its answers (one component, closed, chi = 0) and
-// reports an error instead of a time if they are wrong.
+// The mesh (the cross-checks' 500 x 1000 quad torus split into 1,000,000 triangles) is built
+// once, outside the timing. Items are triangles, so items/s compare directly. After the runs the
+// program prints time(OpenMesh) / time(patchwork) and time(CGAL) / time(patchwork), in CPU and
+// wall time: a ratio above 1 means patchwork is faster. patchwork_halfedge_only and
+// patchwork_analyze_only split our time between the two steps. Each benchmark checks its answers
+// (one component, closed, chi = 0) and reports an error instead of a time if they are wrong.
 //
-//   build-release/bench/meshes_bench                       (about a minute on 2 cores)
-//   build-release/bench/meshes_bench --benchmark_filter=cgal
+//   build/release/bench/meshes_bench                       (about 15 s on 2 cores)
+//   build/release/bench/meshes_bench --benchmark_filter=cgal
 
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
@@ -26,14 +26,12 @@
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <iterator>
 #include <map>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -41,6 +39,7 @@
 #include "meshes/interop/cgal.h"
 #include "meshes/interop/openmesh.h"
 #include "meshes/topology.h"
+#include "tests/meshes/interop/interop_test_meshes.h"
 
 namespace {
 
@@ -50,31 +49,9 @@ using patchwork::FaceVertexMesh;
 constexpr std::uint32_t major_segments = 500;
 constexpr std::uint32_t minor_segments = 1000;
 
-// Torus (R = 2, r = 1), n x m quads each split into two triangles, normals out.
-FaceVertexMesh make_torus(std::uint32_t n, std::uint32_t m) {
-  patchwork::Positions positions(static_cast<Eigen::Index>(n) * m, 3);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    for (std::uint32_t j = 0; j < m; ++j) {
-      const double theta = 2 * std::numbers::pi * i / n;
-      const double phi = 2 * std::numbers::pi * j / m;
-      positions.row(static_cast<Eigen::Index>(i) * m + j) << (2 + std::cos(phi)) * std::cos(theta),
-          (2 + std::cos(phi)) * std::sin(theta), std::sin(phi);
-    }
-  }
-  const auto id = [&](std::uint32_t i, std::uint32_t j) { return (i % n) * m + (j % m); };
-  std::vector<std::uint32_t> indices;
-  indices.reserve(static_cast<std::size_t>(n) * m * 6);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    for (std::uint32_t j = 0; j < m; ++j) {
-      const std::uint32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      indices.insert(indices.end(), {a, b, c, a, c, d});
-    }
-  }
-  return FaceVertexMesh::uniform(std::move(positions), 3, std::move(indices));
-}
-
 const FaceVertexMesh& torus() {
-  static const FaceVertexMesh mesh = make_torus(major_segments, minor_segments);
+  // The cross-checks' torus (R = 2, r = 1), each quad split into two triangles, normals out.
+  static const FaceVertexMesh mesh = patchwork::test::torus(major_segments, minor_segments, true);
   return mesh;
 }
 

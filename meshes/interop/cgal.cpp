@@ -1,56 +1,12 @@
 #include "meshes/interop/cgal.h"
 
-#include <string>
-
 #include "core/errors.h"
+#include "meshes/interop/add_faces.h"
 
 namespace patchwork {
 namespace {
 
 using VertexIndex = CgalSurfaceMesh::Vertex_index;
-
-std::string corners_text(std::span<const std::uint32_t> face) {
-  std::string text;
-  for (std::uint32_t v : face) {
-    if (!text.empty()) text += ' ';
-    text += std::to_string(v);
-  }
-  return text;
-}
-
-// Why CGAL refused face f (all faces before it were added, so face indices are our ids).
-std::string refusal_reason(const CgalSurfaceMesh& sm, std::span<const std::uint32_t> face) {
-  for (std::size_t k = 0; k < face.size(); ++k) {
-    for (std::size_t j = k + 1; j < face.size(); ++j) {
-      if (face[k] == face[j]) return detail::message("it uses vertex ", face[k], " more than once");
-    }
-  }
-  for (std::size_t k = 0; k < face.size(); ++k) {
-    const std::uint32_t a = face[k];
-    const std::uint32_t b = face[(k + 1) % face.size()];
-    const auto h = sm.halfedge(VertexIndex(a), VertexIndex(b));
-    if (h != CgalSurfaceMesh::null_halfedge() && !sm.is_border(h)) {
-      return detail::message("edge (", a, ",", b, ") is already walked from ", a, " to ", b, " by face ",
-                             static_cast<std::uint32_t>(sm.face(h)),
-                             " (an edge with three faces, or inconsistent orientation)");
-    }
-  }
-  for (std::uint32_t v : face) {
-    const VertexIndex vi(v);
-    if (!sm.is_isolated(vi) && !sm.is_border(vi)) {
-      return detail::message("vertex ", v, " is already surrounded by faces (a non-manifold vertex)");
-    }
-  }
-  return "its vertices' fans cannot be linked (a non-manifold vertex)";
-}
-
-Positions positions_of(const std::vector<CgalPoint>& points) {
-  Positions positions(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t v = 0; v < points.size(); ++v) {
-    for (int k = 0; k < 3; ++k) positions(static_cast<Eigen::Index>(v), k) = points[v][k];
-  }
-  return positions;
-}
 
 }  // namespace
 
@@ -63,15 +19,18 @@ CgalSurfaceMesh to_cgal_surface_mesh(const FaceVertexMesh& mesh) {
   for (Eigen::Index v = 0; v < positions.rows(); ++v)
     sm.add_vertex(CgalPoint(positions(v, 0), positions(v, 1), positions(v, 2)));
   std::vector<VertexIndex> corners;
-  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
-    const auto face = mesh.face(f);
+  const auto add_face = [&](std::span<const std::uint32_t> face) {
     corners.clear();
     for (std::uint32_t v : face) corners.push_back(VertexIndex(v));
-    if (sm.add_face(corners) == CgalSurfaceMesh::null_face()) {
-      throw TopologyError(detail::message("to_cgal_surface_mesh: CGAL cannot add face ", f, " (", corners_text(face),
-                                          "): ", refusal_reason(sm, face)));
-    }
-  }
+    return sm.add_face(corners) != CgalSurfaceMesh::null_face();
+  };
+  const auto face_walking = [&](std::uint32_t a, std::uint32_t b) -> std::int64_t {
+    const auto h = sm.halfedge(VertexIndex(a), VertexIndex(b));
+    if (h == CgalSurfaceMesh::null_halfedge() || sm.is_border(h)) return -1;
+    return static_cast<std::uint32_t>(sm.face(h));
+  };
+  const auto surrounded = [&](std::uint32_t v) { return !sm.is_isolated(VertexIndex(v)) && !sm.is_border(VertexIndex(v)); };
+  detail::add_faces(mesh, "to_cgal_surface_mesh", {"CGAL", add_face, face_walking, surrounded});
   return sm;
 }
 
@@ -100,7 +59,7 @@ FaceVertexMesh from_cgal(const CgalSurfaceMesh& sm) {
     } while (h != start);
     sizes.push_back(size);
   }
-  return FaceVertexMesh(positions_of(points), std::move(sizes), std::move(indices));
+  return FaceVertexMesh(detail::positions_of(points), std::move(sizes), std::move(indices));
 }
 
 CgalPolygonSoup to_cgal_polygon_soup(const FaceVertexMesh& mesh) {
@@ -132,7 +91,7 @@ FaceVertexMesh from_cgal_polygon_soup(const CgalPolygonSoup& soup) {
     }
     sizes.push_back(static_cast<std::uint32_t>(polygon.size()));
   }
-  return FaceVertexMesh(positions_of(soup.points), std::move(sizes), std::move(indices));
+  return FaceVertexMesh(detail::positions_of(soup.points), std::move(sizes), std::move(indices));
 }
 
 }  // namespace patchwork
