@@ -1,5 +1,6 @@
 // The edge list (seed Def 54): edges by first use, left and right faces with -1 at the boundary,
-// conversions to and from face lists and half-edge meshes.
+// conversions to and from face lists and half-edge meshes; and the edge table every mesh type and
+// algorithm of meshes/ is built from.
 
 #include "meshes/edge_list_mesh.h"
 
@@ -9,16 +10,15 @@
 #include <string>
 
 #include "core/errors.h"
+#include "meshes/edge_table.h"
 #include "meshes/orientation.h"
 #include "tests/meshes/mesh_generators.h"
+#include "tests/meshes/reference_topology.h"
 
 namespace patchwork {
 namespace {
 
 using namespace patchwork::testing;
-
-// The unit square as triangles f0 = (0,1,2) and f1 = (0,2,3), both counter-clockwise from +z.
-FaceVertexMesh square() { return make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}}); }
 
 TEST(EdgeListMesh, SquareMatchesDefinition54) {
   const EdgeListMesh mesh(square());
@@ -50,24 +50,15 @@ TEST(EdgeListMesh, SquareMatchesDefinition54) {
 }
 
 TEST(EdgeListMesh, RejectsAThirdFaceAndARepeatedDirection) {
-  const FaceVertexMesh book =
-      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
-  try {
-    EdgeListMesh mesh(book);
-    FAIL() << "no TopologyError";
-  } catch (const TopologyError& e) {
-    // Faces 0 and 2 both walk 0 -> 1 while face 1 is on the other side.
-    EXPECT_NE(std::string(e.what()).find("edge (0,1) walked from 0 by faces 0 and 2 (and a third face)"),
-              std::string::npos)
-        << e.what();
-  }
+  const auto build_error = [](const FaceVertexMesh& mesh) {
+    return error_message<TopologyError>([&] { EdgeListMesh built(mesh); });
+  };
+  // Faces 0 and 2 of the book both walk 0 -> 1 while face 1 is on the other side.
+  const std::string pages = build_error(book());
+  EXPECT_NE(pages.find("edge (0,1) walked from 0 by faces 0 and 2 (and a third face)"), std::string::npos) << pages;
   const FaceVertexMesh same_direction = make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 3, 2}});
-  try {
-    EdgeListMesh mesh(same_direction);
-    FAIL() << "no TopologyError";
-  } catch (const TopologyError& e) {
-    EXPECT_NE(std::string(e.what()).find("edge (2,0) walked from 2 by faces 0 and 1"), std::string::npos) << e.what();
-  }
+  const std::string twice = build_error(same_direction);
+  EXPECT_NE(twice.find("edge (2,0) walked from 2 by faces 0 and 1"), std::string::npos) << twice;
 }
 
 TEST(EdgeListMesh, FaceWalkingAnEdgeThereAndBackRoundTrips) {
@@ -133,6 +124,48 @@ RC_GTEST_PROP(EdgeListMesh, LeftAndRightFacesAreTheWalksOfEachEdge, ()) {
     }
   }
   RC_ASSERT(to_face_vertex_mesh(edges) == mesh);
+}
+
+// The edge table against ordered maps of walks, on any soup (surfaces, damaged or not, and random
+// faces with repeated corners and crowded edges): edges numbered by first use, each use's face,
+// corner and direction, twins, and each corner's edge.
+RC_GTEST_PROP(EdgeTable, MatchesTheEdgesByFirstUseOnAnySoup, ()) {
+  Random random(*seed());
+  const FaceVertexMesh mesh = random.coin() ? any_soup(random) : scrambled(any_surface(random, 1).mesh, random);
+  const std::vector<std::uint32_t>& index = mesh.face_indices();
+  const detail::EdgeTable table(mesh);
+  const auto edges = edges_by_first_use(mesh);
+  RC_ASSERT(table.edge_count() == edges.size());
+  std::vector<std::uint32_t> corner_edge(index.size(), detail::EdgeTable::none);
+  for (std::uint32_t e = 0; e < edges.size(); ++e) {
+    const std::vector<Walk>& walks = edges[e];
+    RC_ASSERT(table.vertices(e) == (std::array<std::uint32_t, 2>{walks[0].from, walks[0].to}));
+    RC_ASSERT(table.use_count(e) == walks.size());
+    RC_ASSERT(table.has_two_uses(e) == (walks.size() == 2));
+    std::vector<detail::EdgeUse> uses(table.uses(e).begin(), table.uses(e).end());
+    RC_ASSERT(uses.size() == walks.size());
+    RC_ASSERT(uses[0].corner == table.first_use(e));
+    for (std::size_t k = 0; k < uses.size(); ++k) {
+      const std::uint32_t c = uses[k].corner;
+      RC_ASSERT(k == 0 || c > uses[k - 1].corner);
+      RC_ASSERT(uses[k].face == walks[k].face);
+      RC_ASSERT(table.face_of(c) == walks[k].face);
+      RC_ASSERT(index[c] == walks[k].from);
+      RC_ASSERT(index[table.next_corner(c)] == walks[k].to);
+      RC_ASSERT(table.next_corner(table.prev_corner(c)) == c);
+      RC_ASSERT(table.is_first_use(c) == (k == 0));
+      const std::uint32_t twin = walks.size() == 1   ? detail::EdgeTable::none
+                                 : walks.size() == 2 ? uses[1 - k].corner
+                                                     : detail::EdgeTable::crowded;
+      RC_ASSERT(table.twin(c) == twin);
+      corner_edge[c] = e;
+    }
+    if (walks.size() >= 2) {
+      const auto two = table.first_two_uses(e);
+      RC_ASSERT(two[0].corner == uses[0].corner && two[1].corner == uses[1].corner);
+    }
+  }
+  for (std::uint32_t c = 0; c < index.size(); ++c) RC_ASSERT(table.edge_of(c) == corner_edge[c]);
 }
 
 }  // namespace

@@ -12,24 +12,17 @@
 
 #include "core/errors.h"
 #include "meshes/ids.h"
+#include "tests/meshes/face_lists.h"
 
 namespace patchwork {
 namespace {
+
+using testing::error_message;
 
 Positions square_positions() {
   Positions positions(5, 3);
   positions << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0.5, 2, 0;
   return positions;
-}
-
-template <class Function>
-std::string error_of(Function function) {
-  try {
-    function();
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(FaceVertexMesh, MixedFacesFromSizesAndIndices) {
@@ -70,22 +63,22 @@ TEST(FaceVertexMesh, EmptyMeshAndUnusedVertices) {
 }
 
 TEST(FaceVertexMesh, RejectsBadInputNamingTheElement) {
-  EXPECT_NE(error_of([] {
+  EXPECT_NE(error_message([] {
               FaceVertexMesh(square_positions(), {3, 2}, {0, 1, 2, 3, 4});
             }).find("face 1 has 2 corners"),
             std::string::npos);
-  EXPECT_NE(error_of([] {
+  EXPECT_NE(error_message([] {
               FaceVertexMesh(square_positions(), {3}, {0, 1, 2, 3});
             }).find("face sizes add up to 3 corners but 4 indices are given"),
             std::string::npos);
-  EXPECT_NE(error_of([] {
+  EXPECT_NE(error_message([] {
               FaceVertexMesh(square_positions(), {3, 3}, {0, 1, 2, 0, 2, 5});
             }).find("face 1 uses vertex 5 but there are 5 vertices"),
             std::string::npos);
   EXPECT_THROW(FaceVertexMesh(square_positions(), {3}, {0, 1, 5}), TopologyError);
   Positions bad = square_positions();
   bad(2, 1) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NE(error_of([&bad] {
+  EXPECT_NE(error_message([&bad] {
               FaceVertexMesh(bad, {3}, {0, 1, 2});
             }).find("position of vertex 2 is not finite"),
             std::string::npos);

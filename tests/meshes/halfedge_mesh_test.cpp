@@ -13,6 +13,7 @@
 
 #include "core/errors.h"
 #include "meshes/orientation.h"
+#include "meshes/topology.h"
 #include "tests/meshes/mesh_generators.h"
 
 namespace patchwork {
@@ -20,27 +21,9 @@ namespace {
 
 using namespace patchwork::testing;
 
-// The unit square as two triangles (0,1,2) and (0,2,3), counter-clockwise seen from +z.
-//
-//   3 ---- 2
-//   |  f1 /|
-//   |   /  |
-//   | / f0 |
-//   0 ---- 1
-FaceVertexMesh square() { return make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}}); }
-
-FaceVertexMesh tetrahedron() {
-  return make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}});
-}
-
 // The message of the TopologyError that building `mesh` throws ("" if it builds).
 std::string build_error(const FaceVertexMesh& mesh) {
-  try {
-    HalfedgeMesh built(mesh);
-  } catch (const TopologyError& e) {
-    return e.what();
-  }
-  return "";
+  return error_message<TopologyError>([&] { HalfedgeMesh built(mesh); });
 }
 
 // The half-edge from a to b, found by search (invalid if there is none).
@@ -130,24 +113,17 @@ TEST(HalfedgeMesh, IsolatedVertexHasNoHalfedge) {
 
 TEST(HalfedgeMesh, EdgeWithThreeFacesNamesTheEdgeAndFaces) {
   // Three triangles on edge (0,1): a book of three pages.
-  const FaceVertexMesh book =
-      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
-  const std::string message = build_error(book);
+  const std::string message = build_error(book());
   EXPECT_NE(message.find("edge (0,1) used by 3 faces (0, 1, 2)"), std::string::npos) << message;
 }
 
 TEST(HalfedgeMesh, VertexWithTwoFansNamesTheVertexAndFaces) {
   // Two triangles touching at vertex 0 only (a bowtie): two boundary fans at 0.
-  const FaceVertexMesh bowtie =
-      make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}});
-  const std::string message = build_error(bowtie);
+  const std::string message = build_error(bowtie());
   EXPECT_NE(message.find("vertex 0"), std::string::npos) << message;
   EXPECT_NE(message.find("faces 0, 1"), std::string::npos) << message;
   // Two tetrahedra sharing vertex 0: two closed fans, no boundary at all.
-  const FaceVertexMesh pinched =
-      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}},
-                {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 4, 5}, {0, 6, 4}, {4, 6, 5}, {0, 5, 6}});
-  const std::string closed = build_error(pinched);
+  const std::string closed = build_error(pinched_tetrahedra());
   EXPECT_NE(closed.find("vertex 0"), std::string::npos) << closed;
   EXPECT_NE(closed.find("faces 0, 1, 3, 4, 5, 7"), std::string::npos) << closed;
 }
@@ -171,13 +147,8 @@ TEST(HalfedgeMesh, OutOfRangeIndexIsRejectedBeforeBuilding) {
   // A FaceVertexMesh cannot hold an index past its positions, so neither can a HalfedgeMesh.
   Positions positions(3, 3);
   positions << 0, 0, 0, 1, 0, 0, 0, 1, 0;
-  try {
-    FaceVertexMesh(positions, {3}, {0, 1, 7});
-    FAIL() << "no TopologyError";
-  } catch (const TopologyError& e) {
-    EXPECT_NE(std::string(e.what()).find("face 0 uses vertex 7 but there are 3 vertices"), std::string::npos)
-        << e.what();
-  }
+  const std::string message = error_message<TopologyError>([&] { FaceVertexMesh(positions, {3}, {0, 1, 7}); });
+  EXPECT_NE(message.find("face 0 uses vertex 7 but there are 3 vertices"), std::string::npos) << message;
 }
 
 TEST(HalfedgeMesh, ValidateCatchesNothingOnEveryKnownSurface) {
@@ -265,6 +236,19 @@ RC_GTEST_PROP(HalfedgeMesh, RejectsEveryInconsistentlyOrientedSurface, ()) {
   std::vector<bool> flip(oriented.face_count(), false);
   flip[inner_faces[random.below(inner_faces.size())]] = true;
   RC_ASSERT_THROWS_AS(HalfedgeMesh{flip_faces(oriented, flip)}, TopologyError);
+}
+
+// On any soup, a HalfedgeMesh builds exactly when analyze() finds a manifold and orient() flips
+// no face (every edge of two faces walked both ways).
+RC_GTEST_PROP(HalfedgeMesh, BuildsExactlyTheManifoldsOrientedAsGiven, ()) {
+  Random random(*seed());
+  const FaceVertexMesh mesh = random.coin() ? any_soup(random) : orient(any_surface(random, 1).mesh).mesh;
+  const TopologyReport report = analyze(mesh);
+  const bool buildable = report.manifold && report.orientable && orient(mesh).flipped.empty();
+  RC_CLASSIFY(buildable, "buildable");
+  const std::string error = build_error(mesh);
+  RC_ASSERT(error.empty() == buildable);
+  if (buildable) HalfedgeMesh(mesh).validate();
 }
 
 }  // namespace

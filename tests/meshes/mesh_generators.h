@@ -46,10 +46,9 @@
 
 #include "core/types.h"
 #include "meshes/face_vertex_mesh.h"
+#include "tests/meshes/face_lists.h"
 
 namespace patchwork::testing {
-
-using FaceList = std::vector<std::vector<std::uint32_t>>;
 
 /// A face list with the topology its construction guarantees (never taken from analyze()).
 struct KnownSurface {
@@ -96,18 +95,6 @@ inline std::vector<std::uint32_t> random_permutation(std::size_t n, Random& rand
 
 // ---------------------------------------------------------------------------------------------
 // Plain face lists
-
-inline FaceVertexMesh make_mesh(const std::vector<Vec3>& points, const FaceList& faces) {
-  Positions positions(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t v = 0; v < points.size(); ++v) positions.row(static_cast<Eigen::Index>(v)) = points[v].transpose();
-  std::vector<std::uint32_t> sizes;
-  std::vector<std::uint32_t> indices;
-  for (const auto& face : faces) {
-    sizes.push_back(static_cast<std::uint32_t>(face.size()));
-    indices.insert(indices.end(), face.begin(), face.end());
-  }
-  return FaceVertexMesh(std::move(positions), std::move(sizes), std::move(indices));
-}
 
 inline FaceList faces_of(const FaceVertexMesh& mesh) {
   FaceList faces;
@@ -800,6 +787,92 @@ inline KnownSurface any_surface(Random& random, int max_resolution) {
     return disjoint_union(a, one());
   }
   return one();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Soups that are not surfaces
+
+// Damage a surface of known topology the way files from the wild are damaged: glue vertices
+// together, duplicate faces, add fins on edges, add degenerate faces; then shuffle everything.
+inline FaceVertexMesh damaged(const FaceVertexMesh& mesh, Random& random) {
+  std::vector<Vec3> points = points_of(mesh);
+  FaceList faces = faces_of(mesh);
+  for (int step = random_int(random, 1, 6); step > 0; --step) {
+    const auto some_vertex = [&]() { return faces[random.below(faces.size())][0]; };
+    switch (random.below(4)) {
+      case 0: {  // glue two vertices (pinches, and degenerate corners where they were neighbours)
+        const std::uint32_t keep = some_vertex(), gone = some_vertex();
+        for (auto& face : faces) std::replace(face.begin(), face.end(), gone, keep);
+        break;
+      }
+      case 1: {  // a duplicate face, maybe reversed: its edges get three or more faces
+        std::vector<std::uint32_t> copy = faces[random.below(faces.size())];
+        if (random.coin()) std::reverse(copy.begin(), copy.end());
+        faces.push_back(copy);
+        break;
+      }
+      case 2: {  // a fin: a new triangle on an existing edge
+        const auto& face = faces[random.below(faces.size())];
+        const std::size_t k = random.below(face.size());
+        points.push_back(points[face[k]] + Vec3(0.1, 0.2, 0.3));
+        faces.push_back({face[k], face[(k + 1) % face.size()], static_cast<std::uint32_t>(points.size() - 1)});
+        break;
+      }
+      default: {  // a degenerate face
+        const std::uint32_t a = some_vertex(), b = some_vertex();
+        const FaceList degenerate{{a, a, b}, {a, b, a}, {a, a, a}, {b, a, a, b}};
+        faces.push_back(degenerate[random.below(degenerate.size())]);
+      }
+    }
+  }
+  return scrambled(make_mesh(points, faces), random);
+}
+
+/// A random soup: 3 to 10 vertices at random points and up to 12 faces of 3 to 6 random corners
+/// each (repeats, crowded edges, any orientation).
+inline FaceVertexMesh random_soup(Random& random) {
+  const int vertices = random_int(random, 3, 10);
+  std::vector<Vec3> points;
+  for (int v = 0; v < vertices; ++v) {
+    points.emplace_back(random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1));
+  }
+  FaceList faces(static_cast<std::size_t>(random_int(random, 0, 12)));
+  for (auto& face : faces) {
+    for (int k = random_int(random, 3, 6); k > 0; --k) face.push_back(random.below(points.size()));
+  }
+  return make_mesh(points, faces);
+}
+
+/// Glues up to three pairs of vertices that share no face and no neighbour: each glued vertex
+/// has two fans (two closed ones on a closed surface), while every edge keeps its faces and no
+/// face repeats a vertex.
+inline FaceVertexMesh pinched(const FaceVertexMesh& mesh, Random& random) {
+  FaceList faces = faces_of(mesh);
+  std::vector<std::set<std::uint32_t>> near(mesh.vertex_count());  // vertices sharing a face
+  for (const auto& face : faces) {
+    for (std::uint32_t v : face) near[v].insert(face.begin(), face.end());
+  }
+  int glued = 0;
+  for (int attempt = 0; attempt < 50 && glued < 3 && !faces.empty(); ++attempt) {
+    const std::uint32_t a = faces[random.below(faces.size())][0], b = faces[random.below(faces.size())][0];
+    if (a == b || near[a].count(b) != 0) continue;
+    if (std::any_of(near[b].begin(), near[b].end(), [&](std::uint32_t w) { return near[a].count(w) != 0; })) continue;
+    for (auto& face : faces) std::replace(face.begin(), face.end(), b, a);
+    near[a].insert(near[b].begin(), near[b].end());
+    near[b].clear();
+    ++glued;
+  }
+  return make_mesh(points_of(mesh), faces);
+}
+
+/// A damaged surface (pinched vertices, crowded edges, degenerate faces), a random soup, or a
+/// surface with pinched vertices only.
+inline FaceVertexMesh any_soup(Random& random) {
+  switch (random.below(3)) {
+    case 0: return damaged(any_surface(random, 1).mesh, random);
+    case 1: return random_soup(random);
+    default: return pinched(scrambled(any_surface(random, 1).mesh, random), random);
+  }
 }
 
 /// RapidCheck: a seed for Random (printed with a counterexample, so it reproduces).

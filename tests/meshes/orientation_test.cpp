@@ -7,6 +7,7 @@
 #include <rapidcheck/gtest.h>
 
 #include "tests/meshes/mesh_generators.h"
+#include "tests/meshes/reference_topology.h"
 
 namespace patchwork {
 namespace {
@@ -229,6 +230,20 @@ RC_GTEST_PROP(Orientation, ComponentsMatchAReferenceUnionFind, ()) {
   const std::vector<std::uint32_t> component = face_components(mesh);
   RC_ASSERT(component == reference_components(mesh));
   RC_ASSERT(static_cast<Count>(*std::max_element(component.begin(), component.end()) + 1) == surface.components);
+}
+
+// The flips, the orientability and the proof cycles are those of the plain breadth-first walk
+// (orient() only walks breadth-first where a class is non-orientable), on any soup.
+RC_GTEST_PROP(Orientation, MatchesTheBreadthFirstReferenceOnAnySoup, ()) {
+  Random random(*seed());
+  const FaceVertexMesh mesh = any_soup(random);
+  const Orientation result = orient(mesh);
+  const Orientation reference = reference_orient(mesh);
+  RC_CLASSIFY(!reference.non_orientable_cycles.empty(), "non-orientable");
+  RC_ASSERT(result.flipped == reference.flipped);
+  RC_ASSERT(result.component_orientable == reference.component_orientable);
+  RC_ASSERT(result.non_orientable_cycles == reference.non_orientable_cycles);
+  RC_ASSERT(face_components(mesh) == reference_components(mesh));
 }
 
 }  // namespace

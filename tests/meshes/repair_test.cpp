@@ -103,10 +103,8 @@ TEST(Repair, CleanMeshIsLeftAlone) {
 }
 
 TEST(Repair, BowtieVertexIsSplit) {
-  const FaceVertexMesh bowtie =
-      make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}});
-  const RepairReport r = repair(bowtie);
-  EXPECT_EQ(check_report(bowtie, r), "");
+  const RepairReport r = repair(bowtie());
+  EXPECT_EQ(check_report(bowtie(), r), "");
   EXPECT_EQ(r.split_vertices, std::vector<std::uint32_t>{0});
   EXPECT_EQ(r.mesh.vertex_count(), 6u);
   EXPECT_EQ(faces_of(r.mesh), (FaceList{{0, 1, 2}, {5, 3, 4}}));  // the second fan gets the copy
@@ -117,10 +115,8 @@ TEST(Repair, BowtieVertexIsSplit) {
 TEST(Repair, BookOfThreePagesFallsApart) {
   // Three triangles on edge (0,1): joined only across edges of exactly two faces, each page is
   // its own fan at 0 and at 1: three separate triangles, chi = 3.
-  const FaceVertexMesh book =
-      make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
-  const RepairReport r = repair(book);
-  EXPECT_EQ(check_report(book, r), "");
+  const RepairReport r = repair(book());
+  EXPECT_EQ(check_report(book(), r), "");
   EXPECT_EQ(r.split_vertices, (std::vector<std::uint32_t>{0, 1}));
   const TopologyReport t = analyze(r.mesh);
   EXPECT_EQ(t.components, 3);
@@ -198,42 +194,6 @@ TEST(Repair, EmptyMesh) {
   EXPECT_FALSE(r.changed());
   EXPECT_TRUE(r.orientable);
   EXPECT_EQ(r.mesh.face_count(), 0u);
-}
-
-// Damage a surface of known topology the way files from the wild are damaged: glue vertices
-// together, duplicate faces, add fins on edges, add degenerate faces; then shuffle everything.
-FaceVertexMesh damaged(const FaceVertexMesh& mesh, Random& random) {
-  std::vector<Vec3> points = points_of(mesh);
-  FaceList faces = faces_of(mesh);
-  for (int step = random_int(random, 1, 6); step > 0; --step) {
-    const auto some_vertex = [&]() { return faces[random.below(faces.size())][0]; };
-    switch (random.below(4)) {
-      case 0: {  // glue two vertices (pinches, and degenerate corners where they were neighbours)
-        const std::uint32_t keep = some_vertex(), gone = some_vertex();
-        for (auto& face : faces) std::replace(face.begin(), face.end(), gone, keep);
-        break;
-      }
-      case 1: {  // a duplicate face, maybe reversed: its edges get three or more faces
-        std::vector<std::uint32_t> copy = faces[random.below(faces.size())];
-        if (random.coin()) std::reverse(copy.begin(), copy.end());
-        faces.push_back(copy);
-        break;
-      }
-      case 2: {  // a fin: a new triangle on an existing edge
-        const auto& face = faces[random.below(faces.size())];
-        const std::size_t k = random.below(face.size());
-        points.push_back(points[face[k]] + Vec3(0.1, 0.2, 0.3));
-        faces.push_back({face[k], face[(k + 1) % face.size()], static_cast<std::uint32_t>(points.size() - 1)});
-        break;
-      }
-      default: {  // a degenerate face
-        const std::uint32_t a = some_vertex(), b = some_vertex();
-        const FaceList degenerate{{a, a, b}, {a, b, a}, {a, a, a}, {b, a, a, b}};
-        faces.push_back(degenerate[random.below(degenerate.size())]);
-      }
-    }
-  }
-  return scrambled(make_mesh(points, faces), random);
 }
 
 RC_GTEST_PROP(Repair, NeverLosesAFaceAndReturnsAManifold, ()) {

@@ -15,6 +15,7 @@
 #include "meshes/orientation.h"
 #include "meshes/topology.h"
 #include "tests/meshes/mesh_generators.h"
+#include "tests/meshes/reference_topology.h"
 
 namespace patchwork {
 namespace {
@@ -240,6 +241,18 @@ RC_GTEST_PROP(TopologyProperties, FaceListEdgeListHalfedgeRoundTripPreservesEver
   RC_ASSERT(to_face_vertex_mesh(to_edge_list(halfedges)) == mesh);
   RC_ASSERT(halfedges.edge_count() == edges.edge_count());
   RC_ASSERT(static_cast<Count>(halfedges.edge_count()) == count_elements(mesh).edges);
+}
+
+// Pinched vertices (closed fans sharing a vertex), crowded edges, faces repeating a vertex,
+// inconsistent orientation: on any soup, every answer is the element-by-element reference's.
+RC_GTEST_PROP(TopologyProperties, EveryAnswerIsTheReferencesOnAnySoup, ()) {
+  Random random(*seed());
+  const FaceVertexMesh mesh = any_soup(random);
+  const TopologyReport report = analyze(mesh);
+  RC_CLASSIFY(!report.non_manifold_vertices.empty(), "non-manifold vertices");
+  RC_CLASSIFY(!report.non_manifold_edges.empty(), "non-manifold edges");
+  RC_CLASSIFY(!report.orientable, "non-orientable");
+  RC_ASSERT(to_json(report) == to_json(reference_analyze(mesh)));
 }
 
 }  // namespace

@@ -15,10 +15,6 @@ namespace {
 
 using namespace patchwork::testing;
 
-FaceVertexMesh tetrahedron() {
-  return make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}});
-}
-
 TEST(Topology, Tetrahedron) {
   const TopologyReport r = analyze(tetrahedron());
   EXPECT_EQ(r.vertices, 4);
@@ -153,8 +149,7 @@ TEST(Topology, ComponentsAddUpAndIsolatedVerticesStandApart) {
 
 TEST(Topology, EdgeWithThreeFaces) {
   // A book of three triangles on edge (0,1).
-  const TopologyReport r =
-      analyze(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}));
+  const TopologyReport r = analyze(book());
   EXPECT_FALSE(r.edge_manifold);
   EXPECT_FALSE(r.manifold);
   ASSERT_EQ(r.non_manifold_edges.size(), 1u);
@@ -170,8 +165,7 @@ TEST(Topology, EdgeWithThreeFaces) {
 TEST(Topology, VertexWithTwoFans) {
   // A bowtie: triangles (0,1,2) and (0,3,4) touch at vertex 0 only. Touching at a vertex does not
   // connect: two components, each V=3 E=3 F=1 (vertex 0 counted in both, so 1 + 1 != chi = 1).
-  const TopologyReport r =
-      analyze(make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}}));
+  const TopologyReport r = analyze(bowtie());
   EXPECT_TRUE(r.edge_manifold);
   EXPECT_FALSE(r.vertex_manifold);
   EXPECT_FALSE(r.manifold);
@@ -187,9 +181,7 @@ TEST(Topology, VertexWithTwoFans) {
     EXPECT_FALSE(c.genus.has_value());
   }
   // Two closed fans at one vertex: two tetrahedra sharing vertex 0.
-  const TopologyReport pinched =
-      analyze(make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}},
-                        {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {0, 4, 5}, {0, 6, 4}, {4, 6, 5}, {0, 5, 6}}));
+  const TopologyReport pinched = analyze(pinched_tetrahedra());
   EXPECT_EQ(pinched.non_manifold_vertices, std::vector<std::uint32_t>{0});
   EXPECT_TRUE(pinched.closed);
   EXPECT_EQ(pinched.euler, 7 - 12 + 8);

@@ -368,13 +368,8 @@ TEST(CgalInterop, RoundTripsAreExact) {
 }
 
 TEST(CgalInterop, RefusedFacesAreNamed) {
-  const auto message = [](const FaceVertexMesh& mesh) -> std::string {
-    try {
-      to_cgal_surface_mesh(mesh);
-    } catch (const TopologyError& error) {
-      return error.what();
-    }
-    return "no error";
+  const auto message = [](const FaceVertexMesh& mesh) {
+    return testing::error_message<TopologyError>([&] { to_cgal_surface_mesh(mesh); });
   };
   EXPECT_EQ(message(test::book()),
             "to_cgal_surface_mesh: CGAL cannot add face 2 (0 4 1): edge (1,0) is already walked from 1 to 0 by face 0 "

@@ -15,8 +15,13 @@
 #include "meshes/face_vertex_mesh.h"
 #include "meshes/orientation.h"
 #include "meshes/topology.h"
+#include "tests/meshes/face_lists.h"
 
 namespace patchwork::test {
+
+using testing::bowtie;       // two triangles touching at vertex 0: V=5 E=6 F=2 chi=1
+using testing::make_mesh;
+using testing::tetrahedron;  // normals out: V=4 E=6 F=4 chi=2
 
 /// The closed-form topology of a test mesh (our conventions, meshes/topology.h).
 struct Expected {
@@ -37,19 +42,6 @@ struct NamedMesh {
   FaceVertexMesh mesh;
   Expected expected;
 };
-
-inline FaceVertexMesh from_faces(const std::vector<Vec3>& points,
-                                 const std::vector<std::vector<std::uint32_t>>& faces) {
-  Positions positions(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t v = 0; v < points.size(); ++v) positions.row(static_cast<Eigen::Index>(v)) = points[v].transpose();
-  std::vector<std::uint32_t> sizes;
-  std::vector<std::uint32_t> indices;
-  for (const auto& face : faces) {
-    sizes.push_back(static_cast<std::uint32_t>(face.size()));
-    indices.insert(indices.end(), face.begin(), face.end());
-  }
-  return FaceVertexMesh(std::move(positions), std::move(sizes), std::move(indices));
-}
 
 /// The faces of `mesh` in reverse corner order (normals flipped), first corner kept.
 inline FaceVertexMesh reversed(const FaceVertexMesh& mesh, const std::vector<std::uint32_t>& which) {
@@ -92,16 +84,11 @@ inline FaceVertexMesh fan_triangulated(const FaceVertexMesh& mesh) {
   return FaceVertexMesh::uniform(mesh.positions(), 3, std::move(indices));
 }
 
-/// Unit tetrahedron, normals out. V=4 E=6 F=4 chi=2.
-inline FaceVertexMesh tetrahedron() {
-  return from_faces({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
-}
-
 /// Unit cube with corner `origin`, six quads with normals out; vertex x + 2y + 4z.
 inline FaceVertexMesh cube(const Vec3& origin = Vec3::Zero()) {
   std::vector<Vec3> points;
   for (int v = 0; v < 8; ++v) points.push_back(origin + Vec3(v & 1, (v >> 1) & 1, (v >> 2) & 1));
-  return from_faces(points, {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}});
+  return make_mesh(points, {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}});
 }
 
 /// Two unit cubes, the second at x = 3 (vertices 8..15).
@@ -157,7 +144,7 @@ inline FaceVertexMesh disk_grid(std::uint32_t n, std::uint32_t m) {
       faces.push_back({a, a + 1, a + n + 2, a + n + 1});
     }
   }
-  return from_faces(points, faces);
+  return make_mesh(points, faces);
 }
 
 /// A ring of n quads between radius 1 (vertex i) and 2 (vertex n + i), normals +z.
@@ -172,19 +159,13 @@ inline FaceVertexMesh annulus(std::uint32_t n) {
   }
   std::vector<std::vector<std::uint32_t>> faces;
   for (std::uint32_t i = 0; i < n; ++i) faces.push_back({i, n + i, n + (i + 1) % n, (i + 1) % n});
-  return from_faces(points, faces);
+  return make_mesh(points, faces);
 }
 
 /// Three triangles on the edge (0,1), like pages of a book: a non-manifold edge.
 /// V=5 E=7 F=3 chi=1, one edge-connected component.
 inline FaceVertexMesh book() {
-  return from_faces({{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, -1, 0}}, {{0, 2, 1}, {1, 3, 0}, {0, 4, 1}});
-}
-
-/// Two triangles touching at vertex 0 only: a non-manifold (bowtie) vertex.
-/// V=5 E=6 F=2 chi=1, two components (touching at a vertex does not connect).
-inline FaceVertexMesh bowtie() {
-  return from_faces({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}}, {{0, 1, 2}, {0, 3, 4}});
+  return make_mesh({{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, -1, 0}}, {{0, 2, 1}, {1, 3, 0}, {0, 4, 1}});
 }
 
 /// A Moebius band of n quads around the circle of radius 2, `rows` quads across: vertex
@@ -206,25 +187,25 @@ inline FaceVertexMesh moebius_band(std::uint32_t n, std::uint32_t rows) {
   for (std::uint32_t i = 0; i < n; ++i) {
     for (std::uint32_t k = 0; k < rows; ++k) faces.push_back({id(i, k), id(i + 1, k), id(i + 1, k + 1), id(i, k + 1)});
   }
-  return from_faces(points, faces);
+  return make_mesh(points, faces);
 }
 
 /// A square and a triangle on its top edge (a house in z = 0) plus vertex 5, which no face
 /// uses. V=5 (6 rows) E=6 F=2 chi=1.
 inline FaceVertexMesh house_with_isolated_vertex() {
-  return from_faces({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 1.5, 0}, {7, 7, 7}}, {{0, 1, 2, 3}, {3, 2, 4}});
+  return make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 1.5, 0}, {7, 7, 7}}, {{0, 1, 2, 3}, {3, 2, 4}});
 }
 
 /// An open pyramid (a closed fan of 4 triangles around apex 0), then triangle 4 touching the
 /// apex only: OpenMesh and CGAL refuse face 4 (the apex is already surrounded).
 inline FaceVertexMesh cone_with_extra_face() {
-  return from_faces({{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, 2}, {1, 0, 2}},
+  return make_mesh({{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, 2}, {1, 0, 2}},
                     {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}, {0, 5, 6}});
 }
 
 /// One quad that visits vertex 1 twice.
 inline FaceVertexMesh face_repeating_a_vertex() {
-  return from_faces({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {{0, 1, 2, 1}});
+  return make_mesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {{0, 1, 2, 1}});
 }
 
 /// Some triangles of the fan-triangulated n x m disk grid (keep[t] says which; t < 2nm), the
