@@ -27,6 +27,27 @@ SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch) {
   return {n * (n - 1.0) * uu, static_cast<double>(n) * m * uv, m * (m - 1.0) * vv};
 }
 
+SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int pieces) {
+  if (pieces < 1 || pieces > 64) {
+    throw InvalidInput(detail::message("second_derivative_bounds: ", pieces, " pieces is not in [1, 64]"));
+  }
+  if (pieces == 1) return second_derivative_bounds(patch);
+  SecondDerivativeBounds M{0.0, 0.0, 0.0};
+  const double scale = static_cast<double>(pieces) * pieces;
+  for (int b = 0; b < pieces; ++b) {
+    // The row of pieces over [v_b, v_b+1] first, then each piece of it in u.
+    const BezierPatch3 row = subpatch(patch, 0.0, 1.0, static_cast<double>(b) / pieces, static_cast<double>(b + 1) / pieces);
+    for (int a = 0; a < pieces; ++a) {
+      const BezierPatch3 piece = subpatch(row, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces, 0.0, 1.0);
+      const SecondDerivativeBounds m = second_derivative_bounds(piece);
+      M.uu = std::max(M.uu, scale * m.uu);
+      M.uv = std::max(M.uv, scale * m.uv);
+      M.vv = std::max(M.vv, scale * m.vv);
+    }
+  }
+  return M;
+}
+
 double flatness_bound(const SecondDerivativeBounds& M, double du, double dv) {
   if (!(du > 0.0 && du <= 1.0 && dv > 0.0 && dv <= 1.0)) {
     throw InvalidInput(detail::message("flatness_bound: steps (", du, ", ", dv, ") are not in (0, 1]"));
@@ -53,6 +74,33 @@ double triangle_flatness_bound(const SecondDerivativeBounds& M, const Vec2& p0, 
     if (cross != 0.0) r2 = ab * bc * ca / (4.0 * cross * cross);
   }
   return r2 / 2.0;
+}
+
+double sampled_grid_distance(const BezierPatch3& patch, std::int64_t nu, std::int64_t nv, int samples) {
+  if (nu < 1 || nv < 1 || samples < 1) {
+    throw InvalidInput(detail::message("sampled_grid_distance: grid ", nu, " x ", nv, " with ", samples, " samples"));
+  }
+  double result = 0.0;
+  for (std::int64_t b = 0; b < nv; ++b) {
+    for (std::int64_t a = 0; a < nu; ++a) {
+      const double u0 = static_cast<double>(a) / nu, u1 = static_cast<double>(a + 1) / nu;
+      const double v0 = static_cast<double>(b) / nv, v1 = static_cast<double>(b + 1) / nv;
+      const Vec3 p00 = patch.evaluate(u0, v0), p10 = patch.evaluate(u1, v0);
+      const Vec3 p01 = patch.evaluate(u0, v1), p11 = patch.evaluate(u1, v1);
+      for (int s = 0; s <= samples; ++s) {
+        for (int t = 0; s + t <= samples; ++t) {
+          const double x = static_cast<double>(s) / samples, y = static_cast<double>(t) / samples;
+          // Lower triangle (p00, p10, p11): (u, v) = (u0 + (x + y) du, v0 + y dv).
+          const Vec3 lower = (1 - x - y) * p00 + x * p10 + y * p11;
+          result = std::max(result, (patch.evaluate(u0 + (x + y) * (u1 - u0), v0 + y * (v1 - v0)) - lower).norm());
+          // Upper triangle (p00, p11, p01): (u, v) = (u0 + x du, v0 + (x + y) dv).
+          const Vec3 upper = (1 - x - y) * p00 + x * p11 + y * p01;
+          result = std::max(result, (patch.evaluate(u0 + x * (u1 - u0), v0 + (x + y) * (v1 - v0)) - upper).norm());
+        }
+      }
+    }
+  }
+  return result;
 }
 
 GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance) {

@@ -21,6 +21,8 @@ namespace {
 
 using Triangle = std::array<std::uint32_t, 3>;
 constexpr std::uint32_t no_id = 0xffffffffu;
+// Second-derivative bounds from 4 x 4 sub-nets: close to the true suprema (patch_flatness.h).
+constexpr int bound_pieces = 4;
 
 // Edge k of a patch runs (in boundary_curve direction) from corner edge_start(k) to edge_end(k);
 // corners are numbered c0 = (0,0), c1 = (1,0), c2 = (1,1), c3 = (0,1).
@@ -140,7 +142,7 @@ class Tessellator {
     const double near_depth = 1e-3 * set_.size();
     for (std::size_t p = 0; p < patches_.size(); ++p) {
       PatchPlan& plan = plans_[p];
-      plan.bounds = second_derivative_bounds(patches_[p]);
+      plan.bounds = second_derivative_bounds(patches_[p], bound_pieces);
       if (options_.segments) {
         plan.nu = plan.nv = *options_.segments;
         continue;

@@ -2,7 +2,8 @@
 // Patch sets to render-ready triangle meshes within a guaranteed error.
 //
 // Rates. For a tolerance eps every patch gets the smallest grid (N_u, N_v) whose a-priori bound
-// (surfaces/patch_flatness.h, Filip-Magedson-Markot) is <= eps; a shared edge gets one rate, the
+// (surfaces/patch_flatness.h, Filip-Magedson-Markot, with the second-derivative bounds taken
+// from the nets of 4 x 4 sub-patches) is <= eps; a shared edge gets one rate, the
 // larger of its two sides, and a patch whose edge rate differs from its inner rate is stitched
 // to it (surfaces/tessellation_pattern.h). The bound of every triangle, stitched ones included, is
 // computed (triangle_flatness_bound) and the rates are raised until all are <= eps, so

@@ -1,18 +1,22 @@
-// The patchwork command-line tool. Each subcommand prints one line and exits 1 on bad input.
+// The patchwork command-line tool. Exit codes: 0 success, 2 bad usage (CLI11 parse errors),
+// 1 bad input or a failed read or write, with one line on stderr naming the file and the problem.
 
 #include <CLI/CLI.hpp>
 
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
 #include "tools/curve_demo.h"
 #include "tools/info_command.h"
 #include "tools/patches_command.h"
+#include "tools/tessellate_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"patchwork: Bezier curves, patches and meshes"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "patchwork 0.1.0");
 
   int degree = 20;
   long evaluations = 2'000'000;
@@ -26,17 +30,64 @@ int main(int argc, char** argv) {
   patches->add_option("file", patch_file, "BPT file (e.g. data/teapot.bpt)")->required();
   patches->add_flag("--json", json, "Print the report as JSON");
 
-  std::string mesh_file;
+  std::string info_file;
   bool info_json = false;
-  CLI::App* info = app.add_subcommand("info", "Topology of a mesh file (OBJ, OFF, PLY)");
-  info->add_option("file", mesh_file, "Mesh file")->required();
+  CLI::App* info = app.add_subcommand("info", "Topology of a mesh (OBJ, OFF, PLY) or patch set (BPT) file");
+  info->add_option("file", info_file, "Mesh or BPT file")->required();
   info->add_flag("--json", info_json, "Print the report as JSON");
 
-  CLI11_PARSE(app, argc, argv);
+  patchwork::tools::TessellateArguments tess;
+  CLI::App* tessellate = app.add_subcommand("tessellate", "Patch set (BPT) to a render-ready mesh within an error");
+  tessellate->add_option("input", tess.input, "BPT file")->required();
+  tessellate->add_option("-o,--output", tess.output, "Output .glb, .gltf, .obj, .off or .ply")->required();
+  auto* tolerance = tessellate->add_option("--tolerance", tess.tolerance, "Absolute tolerance (model units)");
+  auto* relative = tessellate->add_option("--relative-tolerance", tess.relative_tolerance,
+                                          "Tolerance relative to the bounding-box diagonal");
+  auto* segments = tessellate->add_option("--segments", tess.segments, "Uniform N x N grid per patch");
+  auto* camera = tessellate->add_option("--camera", tess.camera,
+                                        "eye=x,y,z target=x,y,z fov=deg width=px height=px [up=x,y,z]")
+                     ->expected(5, 6);
+  tessellate->add_option("--pixel-tolerance", tess.pixel_tolerance, "Tolerance in pixels with --camera");
+  tolerance->excludes(relative, segments, camera);
+  relative->excludes(segments, camera);
+  segments->excludes(camera);
+  tessellate->add_option("--threads", tess.threads, "Threads (0: all cores)");
+  tessellate->add_option("--uv", tess.uv, "UVs: none, patch (surface parameters) or atlas");
+  tessellate->add_flag("--tangents", tess.tangents, "Write glTF TANGENT");
+  tessellate->add_option("--crease-angle", tess.crease_angle_degrees,
+                         "Split vertices where normals differ by more than this (degrees)");
+  tessellate->add_flag("--json", tess.json, "Print the summary as JSON");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
   try {
     if (demo->parsed()) patchwork::tools::run_curve_demo(std::cout, degree, evaluations);
     if (patches->parsed()) patchwork::tools::run_patches_report(std::cout, patch_file, json);
-    if (info->parsed()) patchwork::tools::run_info(std::cout, mesh_file, info_json);
+    if (info->parsed()) {
+      const bool bpt = std::filesystem::path(info_file).extension() == ".bpt";
+      if (bpt) {
+        patchwork::tools::run_patches_report(std::cout, info_file, info_json);
+      } else {
+        patchwork::tools::run_info(std::cout, info_file, info_json);
+      }
+    }
+    if (tessellate->parsed()) {
+      if (!tess.tolerance && !tess.relative_tolerance && !tess.segments && tess.camera.empty()) {
+        std::cerr << "patchwork tessellate: give one of --tolerance, --relative-tolerance, --segments, --camera\n";
+        return 2;
+      }
+      patchwork::tools::run_tessellate(std::cout, std::cerr, tess);
+    }
   } catch (const std::exception& error) {
     std::cerr << "patchwork: " << error.what() << "\n";
     return 1;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "tests/support/temporary_directory.h"
 #include "io/atomic_file.h"
 
 namespace patchwork {
@@ -79,35 +80,9 @@ std::string with_line(int line, const std::string& replacement) {
   return text;
 }
 
-// A temporary folder of our own under the system's temp folder, removed with everything in it.
-class TemporaryDirectory {
- public:
-  TemporaryDirectory() {
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-    for (int attempt = 0;; ++attempt) {
-      path_ = fs::temp_directory_path() /
-              ("patchwork_io_test_" + std::to_string(::getpid()) + "_" + std::to_string(stamp) + "_" + std::to_string(attempt));
-      if (fs::create_directory(path_)) break;
-    }
-  }
-  ~TemporaryDirectory() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TemporaryDirectory(const TemporaryDirectory&) = delete;
-  TemporaryDirectory& operator=(const TemporaryDirectory&) = delete;
-
-  const fs::path& path() const noexcept { return path_; }
-  /// File names in the folder, sorted.
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(path_)) names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
- private:
-  fs::path path_;
+// Every test folder is named after this test program.
+struct TemporaryDirectory : testing::TemporaryDirectory {
+  TemporaryDirectory() : testing::TemporaryDirectory("patchwork_io_test") {}
 };
 
 std::string file_content(const fs::path& path) {

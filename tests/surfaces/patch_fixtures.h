@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "surfaces/bezier_patch.h"
+#include "surfaces/patch_flatness.h"
 
 namespace patchwork::testing {
 
@@ -67,31 +68,9 @@ inline BezierPatch3 transformed(const BezierPatch3& patch, const Eigen::Affine3d
   return BezierPatch3(patch.degree_u(), patch.degree_v(), std::move(points));
 }
 
-/// max |F(u,v) - L(u,v)| over the triangulated nu x nv grid (each cell split along its diagonal
-/// from (u_a, v_b) to (u_a+1, v_b+1)), sampled at `samples` x `samples` barycentric points per
-/// triangle: a lower bound of the true distance between the patch and its interpolant.
+/// max |F(u,v) - L(u,v)| sampled over the triangulated nu x nv grid (patch_flatness.h).
 inline double measured_distance(const BezierPatch3& patch, std::int64_t nu, std::int64_t nv, int samples) {
-  double result = 0.0;
-  for (std::int64_t b = 0; b < nv; ++b) {
-    for (std::int64_t a = 0; a < nu; ++a) {
-      const double u0 = static_cast<double>(a) / nu, u1 = static_cast<double>(a + 1) / nu;
-      const double v0 = static_cast<double>(b) / nv, v1 = static_cast<double>(b + 1) / nv;
-      const Vec3 p00 = patch.evaluate(u0, v0), p10 = patch.evaluate(u1, v0);
-      const Vec3 p01 = patch.evaluate(u0, v1), p11 = patch.evaluate(u1, v1);
-      for (int s = 0; s <= samples; ++s) {
-        for (int t = 0; s + t <= samples; ++t) {
-          const double x = static_cast<double>(s) / samples, y = static_cast<double>(t) / samples;
-          // Lower triangle (p00, p10, p11): (u, v) = (u0 + (x + y) du, v0 + y dv).
-          const Vec3 lower = (1 - x - y) * p00 + x * p10 + y * p11;
-          result = std::max(result, (patch.evaluate(u0 + (x + y) * (u1 - u0), v0 + y * (v1 - v0)) - lower).norm());
-          // Upper triangle (p00, p11, p01): (u, v) = (u0 + x du, v0 + (x + y) dv).
-          const Vec3 upper = (1 - x - y) * p00 + x * p11 + y * p01;
-          result = std::max(result, (patch.evaluate(u0 + x * (u1 - u0), v0 + (x + y) * (v1 - v0)) - upper).norm());
-        }
-      }
-    }
-  }
-  return result;
+  return sampled_grid_distance(patch, nu, nv, samples);
 }
 
 /// Max norm of the control points (the scale for relative tolerances).

@@ -1,0 +1,173 @@
+// The patchwork command line, run as a user runs it: exit codes (0 success, 2 bad usage, 1 bad
+// input or I/O failure with one line on stderr), the JSON keys it promises, files written whole
+// or not at all, and glTF that passes the Khronos validator.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "io/mesh_file.h"
+#include "meshes/topology.h"
+#include "tests/support/temporary_directory.h"
+
+namespace patchwork {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+// Runs `patchwork ARGS` with stdout and stderr captured in files of `folder`.
+CliRun patchwork(const testing::TemporaryDirectory& folder, const std::string& arguments) {
+  const fs::path out = folder.path() / "stdout.txt";
+  const fs::path err = folder.path() / "stderr.txt";
+  const std::string command =
+      quote(PATCHWORK_CLI) + " " + arguments + " > " + quote(out.string()) + " 2> " + quote(err.string());
+  const int status = std::system(command.c_str());
+  CliRun run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  fs::remove(out);
+  fs::remove(err);
+  return run;
+}
+
+const std::string teapot = quote(PATCHWORK_DATA_DIR "/teapot.bpt");
+
+bool validator_available() {
+  return std::system("node --version > /dev/null 2>&1") == 0 &&
+         fs::exists(PATCHWORK_SOURCE_DIR "/tools/gltf-validate/node_modules");
+}
+
+// Runs the Khronos validator; true when it reports no error and no warning.
+bool validates(const fs::path& file) {
+  const std::string command = "node " + quote(PATCHWORK_SOURCE_DIR "/tools/gltf-validate/validate.js") + " " +
+                              quote(file.string()) + " > /dev/null 2>&1";
+  return std::system(command.c_str()) == 0;
+}
+
+int lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+TEST(Cli, TessellatePrintsExactlyThePromisedJsonAndWritesValidGltf) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path glb = folder.path() / "teapot.glb";
+  const CliRun run = patchwork(folder, "tessellate " + teapot + " -o " + quote(glb.string()) + " --relative-tolerance 1e-3 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json summary = nlohmann::json::parse(run.out);
+  std::set<std::string> keys;
+  for (const auto& [key, value] : summary.items()) keys.insert(key);
+  EXPECT_EQ(keys, (std::set<std::string>{"patches", "triangles", "vertices", "seconds", "tolerance", "error_bound",
+                                         "measured_error", "culled_patches"}));
+  EXPECT_EQ(summary["patches"], 32);
+  EXPECT_LE(summary["measured_error"].get<double>(), summary["error_bound"].get<double>());
+  EXPECT_LE(summary["error_bound"].get<double>(), summary["tolerance"].get<double>());
+  EXPECT_NEAR(summary["tolerance"].get<double>(), 8.2048659851356535e-3, 1e-12);
+  EXPECT_EQ(summary["culled_patches"], 0);
+  ASSERT_TRUE(fs::exists(glb));
+  if (!validator_available()) GTEST_SKIP() << "node or tools/gltf-validate/node_modules missing: not validated";
+  EXPECT_TRUE(validates(glb));
+  // Every option that changes the file: tangents, atlas UVs, a camera, uniform segments, .gltf.
+  for (const std::string& options :
+       {std::string("--relative-tolerance 1e-2 --tangents --uv atlas"), std::string("--segments 4 --uv none"),
+        std::string("--camera eye=8,-6,5 target=0,0,1.5 fov=40 width=640 height=480 --pixel-tolerance 1")}) {
+    const fs::path gltf = folder.path() / "teapot.gltf";
+    const CliRun other = patchwork(folder, "tessellate " + teapot + " -o " + quote(gltf.string()) + " " + options);
+    ASSERT_EQ(other.exit_code, 0) << options << ": " << other.err;
+    EXPECT_TRUE(validates(gltf)) << options;
+  }
+}
+
+TEST(Cli, TessellateToAMeshFormatKeepsThePatchSetsTopology) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path obj = folder.path() / "teapot.obj";
+  const CliRun run = patchwork(folder, "tessellate " + teapot + " -o " + quote(obj.string()) + " --tolerance 0.01");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("measured error"), std::string::npos);
+  const TopologyReport report = analyze(read_mesh(obj));
+  EXPECT_EQ(report.components, 4);
+  EXPECT_EQ(report.boundary_loops, 6);
+  EXPECT_TRUE(report.manifold);
+  const CliRun info = patchwork(folder, "info " + quote(obj.string()) + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(nlohmann::json::parse(info.out)["components"], 4);
+}
+
+TEST(Cli, InfoOnAPatchSetGivesItsAdjacency) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const CliRun run = patchwork(folder, "info " + teapot + " --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["patches"], 32);
+  EXPECT_EQ(report["shared_edges"], 52);
+  EXPECT_EQ(report["open_edges"], 16);
+  EXPECT_EQ(report["collapsed_edges"], 8);
+  EXPECT_EQ(report["boundary_loops"], 6);
+}
+
+TEST(Cli, BadInputFailsWithOneLineAndWritesNothing) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path malformed = folder.path() / "bad.bpt";
+  std::ofstream(malformed) << "2\n3 3\n0 0 0\n";
+  const fs::path output = folder.path() / "out.glb";
+  const std::string o = " -o " + quote(output.string());
+  for (const std::string& arguments :
+       {"tessellate " + quote((folder.path() / "missing.bpt").string()) + o + " --tolerance 0.01",
+        "tessellate " + quote(malformed.string()) + o + " --tolerance 0.01",
+        "tessellate " + teapot + o + " --tolerance -0.01", "tessellate " + teapot + o + " --relative-tolerance 0",
+        "tessellate " + teapot + o + " --segments 0",
+        "tessellate " + teapot + " -o " + quote((folder.path() / "no" / "such" / "folder.glb").string()) + " --segments 2",
+        "tessellate " + teapot + " -o " + quote((folder.path() / "teapot.stl").string()) + " --segments 2",
+        "tessellate " + teapot + o + " --camera eye=0,0,0 target=0,0,0 fov=40 width=10 height=10"}) {
+    const CliRun run = patchwork(folder, arguments);
+    EXPECT_EQ(run.exit_code, 1) << arguments;
+    EXPECT_EQ(lines(run.err), 1) << arguments << "\n" << run.err;
+    EXPECT_EQ(run.err.rfind("patchwork: ", 0), 0u) << run.err;
+    EXPECT_EQ(folder.entries(), std::vector<std::string>{"bad.bpt"}) << arguments;
+  }
+}
+
+TEST(Cli, BadUsageExitsWithTwo) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const std::string o = " -o " + quote((folder.path() / "out.glb").string());
+  for (const std::string& arguments :
+       {std::string("tessellate"), "tessellate " + teapot + o, "tessellate " + teapot + o + " --segments 4 --tolerance 1",
+        "tessellate " + teapot + o + " --no-such-option", std::string("no-such-command"), std::string("")}) {
+    const CliRun run = patchwork(folder, arguments);
+    EXPECT_EQ(run.exit_code, 2) << arguments << "\n" << run.err;
+    EXPECT_TRUE(folder.entries().empty()) << arguments;
+  }
+}
+
+TEST(Cli, HelpAndVersion) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const CliRun version = patchwork(folder, "--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out, "patchwork 0.1.0\n");
+  for (const std::string command : {"", "tessellate ", "info ", "patches ", "curve-demo "}) {
+    const CliRun help = patchwork(folder, command + "--help");
+    EXPECT_EQ(help.exit_code, 0) << command;
+    EXPECT_NE(help.out.find("Usage"), std::string::npos) << command;
+  }
+}
+
+}  // namespace
+}  // namespace patchwork

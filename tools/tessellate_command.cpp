@@ -1,0 +1,159 @@
+#include "tools/tessellate_command.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <filesystem>
+#include <numbers>
+#include <ostream>
+
+#include "core/errors.h"
+#include "io/bpt.h"
+#include "io/gltf.h"
+#include "io/mesh_file.h"
+#include "surfaces/tessellator.h"
+
+namespace patchwork::tools {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+double parse_number(const std::string& key, const std::string& text) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty()) {
+    throw InvalidInput(detail::message("--camera: ", key, "=", text, " is not a number"));
+  }
+  return value;
+}
+
+Vec3 parse_vector(const std::string& key, const std::string& text) {
+  Vec3 v;
+  std::size_t start = 0;
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t comma = text.find(',', start);
+    if ((c < 2) != (comma != std::string::npos)) {
+      throw InvalidInput(detail::message("--camera: ", key, "=", text, " is not three numbers x,y,z"));
+    }
+    v[c] = parse_number(key, text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    start = comma + 1;
+  }
+  return v;
+}
+
+Camera parse_camera(const std::vector<std::string>& tokens) {
+  Camera camera;
+  bool eye = false, target = false, fov = false, width = false, height = false;
+  for (const std::string& token : tokens) {
+    const std::size_t equals = token.find('=');
+    if (equals == std::string::npos) throw InvalidInput(detail::message("--camera: '", token, "' is not key=value"));
+    const std::string key = token.substr(0, equals);
+    const std::string value = token.substr(equals + 1);
+    if (key == "eye") {
+      camera.eye = parse_vector(key, value), eye = true;
+    } else if (key == "target") {
+      camera.target = parse_vector(key, value), target = true;
+    } else if (key == "up") {
+      camera.up = parse_vector(key, value);
+    } else if (key == "fov") {
+      camera.fov_degrees = parse_number(key, value), fov = true;
+    } else if (key == "width" || key == "height") {
+      const double pixels = parse_number(key, value);
+      if (pixels != std::floor(pixels) || pixels < 1 || pixels > 1e6) {
+        throw InvalidInput(detail::message("--camera: ", key, "=", value, " is not a whole number of pixels"));
+      }
+      (key == "width" ? camera.width : camera.height) = static_cast<int>(pixels);
+      (key == "width" ? width : height) = true;
+    } else {
+      throw InvalidInput(detail::message("--camera: unknown key '", key, "' (eye, target, up, fov, width, height)"));
+    }
+  }
+  if (!(eye && target && fov && width && height)) {
+    throw InvalidInput("--camera needs eye=x,y,z target=x,y,z fov=deg width=px height=px");
+  }
+  validate(camera);
+  return camera;
+}
+
+UvMode parse_uv(const std::string& text) {
+  if (text == "none") return UvMode::none;
+  if (text == "patch") return UvMode::patch;
+  if (text == "atlas") return UvMode::atlas;
+  throw InvalidInput(detail::message("--uv: '", text, "' is not none, patch or atlas"));
+}
+
+}  // namespace
+
+void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateArguments& arguments) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  // Everything is checked before anything is read or written.
+  const std::string extension = lower_extension(arguments.output);
+  const bool gltf = extension == ".glb" || extension == ".gltf";
+  if (!gltf && extension != ".obj" && extension != ".off" && extension != ".ply") {
+    throw InvalidInput(detail::message("tessellate: output ", arguments.output,
+                                       " must end in .glb, .gltf, .obj, .off or .ply"));
+  }
+  TessellationOptions options;
+  options.tolerance = arguments.tolerance;
+  options.relative_tolerance = arguments.relative_tolerance;
+  options.segments = arguments.segments;
+  if (!arguments.camera.empty()) options.camera = parse_camera(arguments.camera);
+  options.pixel_tolerance = arguments.pixel_tolerance;
+  options.threads = arguments.threads;
+  options.uv = parse_uv(arguments.uv);
+  options.tangents = arguments.tangents;
+  options.crease_angle = arguments.crease_angle_degrees * std::numbers::pi / 180.0;
+  if (arguments.threads < 0) throw InvalidInput(detail::message("--threads ", arguments.threads, " is negative"));
+
+  const PatchSet set(read_bpt(arguments.input));
+  const auto tessellation_start = std::chrono::steady_clock::now();
+  const Tessellation result = tessellate(set, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tessellation_start).count();
+  if (elapsed() > 1.0) progress << "patchwork: tessellated in " << seconds << " s, writing " << arguments.output << "\n";
+  if (gltf) {
+    write_gltf(arguments.output, result.mesh);
+  } else {
+    write_mesh(arguments.output, welded_faces(result.mesh));
+  }
+  if (arguments.json) {
+    const nlohmann::json document = {{"patches", set.patches().size()},
+                                     {"triangles", result.mesh.triangle_count()},
+                                     {"vertices", result.mesh.vertex_count()},
+                                     {"seconds", seconds},
+                                     // Uniform grids have no tolerance: null.
+                                     {"tolerance", arguments.segments ? nlohmann::json(nullptr) : nlohmann::json(result.tolerance)},
+                                     {"error_bound", result.error_bound},
+                                     {"measured_error", result.measured_error},
+                                     {"culled_patches", result.culled_patches}};
+    out << document.dump(2) << "\n";
+    return;
+  }
+  out << arguments.input << " -> " << arguments.output << "\n";
+  out << "  patches:        " << set.patches().size() << " (" << result.culled_patches << " culled, "
+      << result.culled_triangles << " triangles saved)\n";
+  out << "  triangles:      " << result.mesh.triangle_count() << "\n";
+  out << "  vertices:       " << result.mesh.vertex_count() << " (" << result.welded_vertices << " welded points)\n";
+  out << "  seconds:        " << seconds << "\n";
+  if (arguments.segments) {
+    out << "  tolerance:      none (uniform " << *arguments.segments << " x " << *arguments.segments << " per patch)\n";
+  } else {
+    out << "  tolerance:      " << result.tolerance << "\n";
+  }
+  out << "  error bound:    " << result.error_bound << " (a priori)\n";
+  out << "  measured error: " << result.measured_error << "\n";
+}
+
+}  // namespace patchwork::tools

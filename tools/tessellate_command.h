@@ -1,0 +1,39 @@
+#pragma once
+// `patchwork tessellate IN.bpt -o OUT.(glb|gltf|obj|off|ply) (--tolerance E |
+// --relative-tolerance R | --segments N | --camera ... --pixel-tolerance T) [--threads T]
+// [--uv none|patch|atlas] [--tangents] [--crease-angle DEG] [--json]`.
+//
+// Prints patches, triangles, vertices, seconds (the tessellation alone), the absolute tolerance,
+// the a-priori error bound, the measured error and the culled patches; with --json one object
+// with exactly the keys patches, triangles, vertices, seconds, tolerance, error_bound,
+// measured_error, culled_patches. OBJ, OFF and PLY get the welded triangles (positions only);
+// glTF gets the render mesh (normals, UVs, tangents).
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace patchwork::tools {
+
+struct TessellateArguments {
+  std::string input;
+  std::string output;
+  std::optional<double> tolerance;
+  std::optional<double> relative_tolerance;
+  std::optional<int> segments;
+  /// key=value tokens: eye=x,y,z target=x,y,z fov=deg width=px height=px [up=x,y,z].
+  std::vector<std::string> camera;
+  double pixel_tolerance = 0.5;
+  int threads = 0;
+  std::string uv = "patch";
+  bool tangents = false;
+  double crease_angle_degrees = 1.0;
+  bool json = false;
+};
+
+/// Runs the command; the summary goes to `out`, progress for long runs to `progress`.
+/// \throws InvalidInput for bad arguments, IoError/ParseError for bad files (nothing written).
+void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateArguments& arguments);
+
+}  // namespace patchwork::tools
