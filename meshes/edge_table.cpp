@@ -56,7 +56,9 @@ void match_bucket(std::vector<Walk>& walks, Matches& out) {
   constexpr std::size_t small = 16;
   const std::size_t n = walks.size();
   if (n > small) {
-    std::stable_sort(walks.begin(), walks.end(), [](Walk a, Walk b) { return a.larger < b.larger; });
+    std::sort(walks.begin(), walks.end(), [](Walk a, Walk b) {  // corners unique: no allocation as stable_sort
+      return a.larger != b.larger ? a.larger < b.larger : a.corner < b.corner;
+    });
     for (std::size_t run = 0; run < n;) {
       std::size_t end = run + 1;
       while (end < n && walks[end].larger == walks[run].larger) ++end;

@@ -19,6 +19,7 @@ constexpr std::uint32_t none = 0xffffffffu;
 // boundary: the boundary edges in edge order; result[c]: the loops of component c.
 std::vector<Count> count_loops(const FaceVertexMesh& mesh, const detail::EdgeTable& table,
                                const std::vector<std::uint32_t>& boundary, const detail::FaceComponents& components) {
+  if (boundary.empty()) return std::vector<Count>(components.count, 0);
   const std::vector<std::uint32_t>& component = components.of_face;
   const auto component_of = [&](std::uint32_t e) { return component[table.face_of(table.first_use(e))]; };
   // The boundary edges grouped by component, in edge order within each (a counting sort).
