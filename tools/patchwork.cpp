@@ -8,6 +8,7 @@
 #include <iostream>
 #include <string>
 
+#include "tools/convert_command.h"
 #include "tools/curve_demo.h"
 #include "tools/info_command.h"
 #include "tools/patches_command.h"
@@ -58,6 +59,12 @@ int main(int argc, char** argv) {
                          "Split vertices where normals differ by more than this (degrees)");
   tessellate->add_flag("--json", tess.json, "Print the summary as JSON");
 
+  std::string convert_input;
+  std::string convert_output;
+  CLI::App* convert = app.add_subcommand("convert", "Between mesh files (OBJ, OFF, PLY) and glTF (.glb, .gltf)");
+  convert->add_option("input", convert_input, "Input file")->required();
+  convert->add_option("output", convert_output, "Output file")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -81,6 +88,7 @@ int main(int argc, char** argv) {
         patchwork::tools::run_info(std::cout, info_file, info_json);
       }
     }
+    if (convert->parsed()) patchwork::tools::run_convert(convert_input, convert_output);
     if (tessellate->parsed()) {
       if (!tess.tolerance && !tess.relative_tolerance && !tess.segments && tess.camera.empty()) {
         std::cerr << "patchwork tessellate: give one of --tolerance, --relative-tolerance, --segments, --camera\n";

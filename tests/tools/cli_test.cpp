@@ -111,6 +111,33 @@ TEST(Cli, TessellateToAMeshFormatKeepsThePatchSetsTopology) {
   EXPECT_EQ(nlohmann::json::parse(info.out)["components"], 4);
 }
 
+TEST(Cli, ConvertBetweenMeshFormatsAndGltfKeepsTheMesh) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path obj = folder.path() / "teapot.obj";
+  ASSERT_EQ(patchwork(folder, "tessellate " + teapot + " -o " + quote(obj.string()) + " --segments 6").exit_code, 0);
+  const fs::path glb = folder.path() / "teapot.glb";
+  const fs::path ply = folder.path() / "back.ply";
+  const CliRun to_glb = patchwork(folder, "convert " + quote(obj.string()) + " " + quote(glb.string()));
+  ASSERT_EQ(to_glb.exit_code, 0) << to_glb.err;
+  const CliRun back = patchwork(folder, "convert " + quote(glb.string()) + " " + quote(ply.string()));
+  ASSERT_EQ(back.exit_code, 0) << back.err;
+  // Same faces over the same (float-rounded) points. glTF has no welding of its own: reading
+  // welds equal positions, which joins the two vertices the tessellator keeps where the handle
+  // touches the body; everything else is unchanged.
+  const TopologyReport before = analyze(read_mesh(obj));
+  const TopologyReport after = analyze(read_mesh(ply));
+  EXPECT_EQ(after.vertices, before.vertices - 1);
+  EXPECT_EQ(after.faces, before.faces);
+  EXPECT_EQ(after.components, before.components);
+  EXPECT_EQ(after.boundary_loops, before.boundary_loops);
+  if (validator_available()) {
+    EXPECT_TRUE(validates(glb));
+  }
+  const CliRun bad = patchwork(folder, "convert " + quote(obj.string()) + " " + quote((folder.path() / "x.stl").string()));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(lines(bad.err), 1);
+}
+
 TEST(Cli, InfoOnAPatchSetGivesItsAdjacency) {
   const testing::TemporaryDirectory folder("patchwork_cli_test");
   const CliRun run = patchwork(folder, "info " + teapot + " --json");
@@ -162,7 +189,7 @@ TEST(Cli, HelpAndVersion) {
   const CliRun version = patchwork(folder, "--version");
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_EQ(version.out, "patchwork 0.1.0\n");
-  for (const std::string command : {"", "tessellate ", "info ", "patches ", "curve-demo "}) {
+  for (const std::string command : {"", "tessellate ", "info ", "patches ", "curve-demo ", "convert "}) {
     const CliRun help = patchwork(folder, command + "--help");
     EXPECT_EQ(help.exit_code, 0) << command;
     EXPECT_NE(help.out.find("Usage"), std::string::npos) << command;
