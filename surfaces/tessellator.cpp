@@ -76,15 +76,21 @@ void check_positive(double value, const char* name) {
 
 // The a-priori bound of every triangle of a pattern, the largest (dropped triangles included:
 // their parameter triangles map onto a mesh edge, which must be as close to the surface).
-double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeBounds& bounds, int nu, int nv) {
-  if (pattern.grid) return flatness_bound(bounds, 1.0 / nu, 1.0 / nv);
+double pattern_bound(const std::vector<Triangle>& kept, const std::vector<Triangle>& dropped,
+                     const std::vector<PatternPoint>& points, const SecondDerivativeBounds& bounds, int nu, int nv) {
   const double aspect = static_cast<double>(nu) / nv;
   double bound = 0.0;
-  for (const Triangle& t : pattern.triangles) {
-    bound = std::max(bound, triangle_flatness_bound(bounds, pattern.points[t[0]].uv, pattern.points[t[1]].uv,
-                                                    pattern.points[t[2]].uv, aspect));
+  for (const auto* list : {&kept, &dropped}) {
+    for (const Triangle& t : *list) {
+      bound = std::max(bound, triangle_flatness_bound(bounds, points[t[0]].uv, points[t[1]].uv, points[t[2]].uv, aspect));
+    }
   }
   return bound;
+}
+
+double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeBounds& bounds, int nu, int nv) {
+  if (pattern.grid) return flatness_bound(bounds, 1.0 / nu, 1.0 / nv);
+  return pattern_bound(pattern.triangles, {}, pattern.points, bounds, nu, nv);
 }
 
 class Tessellator {
@@ -353,12 +359,17 @@ class Tessellator {
       }
     }
     evaluate(patch, r, nu, nv, out);
-    for (const Triangle& t : pattern.triangles) {
-      const bool degenerate =
-          out.welded[t[0]] == out.welded[t[1]] || out.welded[t[1]] == out.welded[t[2]] || out.welded[t[0]] == out.welded[t[2]];
-      (degenerate ? out.dropped : out.kept).push_back(t);
+    const auto degenerate = [&](const Triangle& t) {
+      return out.welded[t[0]] == out.welded[t[1]] || out.welded[t[1]] == out.welded[t[2]] ||
+             out.welded[t[0]] == out.welded[t[2]];
+    };
+    if (std::none_of(pattern.triangles.begin(), pattern.triangles.end(), degenerate)) {
+      out.kept = std::move(out.pattern.triangles);  // the common case: no collapsed edge
+    } else {
+      for (const Triangle& t : pattern.triangles) (degenerate(t) ? out.dropped : out.kept).push_back(t);
     }
-    out.bound = pattern_bound(pattern, plans_[p].bounds, nu, nv);
+    out.bound = pattern.grid ? flatness_bound(plans_[p].bounds, 1.0 / nu, 1.0 / nv)
+                             : pattern_bound(out.kept, out.dropped, pattern.points, plans_[p].bounds, nu, nv);
     if (options_.optimize && !out.kept.empty()) {
       std::vector<Triangle> reordered(out.kept.size());
       meshopt_optimizeVertexCache(reordered.front().data(), out.kept.front().data(), 3 * out.kept.size(), count);
@@ -439,6 +450,19 @@ class Tessellator {
       }
     }
     RenderMesh& mesh = result.mesh;
+    std::size_t points = 0;
+    std::size_t triangles = 0;
+    for (const PatchOutput& out : outputs_) {
+      points += out.welded.size();
+      triangles += out.kept.size();
+    }
+    mesh.positions.reserve(points);
+    mesh.normals.reserve(points);
+    if (options_.uv != UvMode::none) mesh.uvs.reserve(points);
+    if (options_.tangents) mesh.tangents.reserve(points);
+    mesh.position_ids.reserve(points);
+    mesh.indices.reserve(3 * triangles);
+    result.triangle_patches.reserve(triangles);
     // Render vertices of one welded point, chained: first_vertex[id] -> next_vertex[...] -> ...
     std::vector<std::uint32_t> first_vertex(welded_count_, no_id);
     std::vector<std::uint32_t> next_vertex;
@@ -477,6 +501,11 @@ class Tessellator {
         for (std::uint32_t corner : t) mesh.indices.push_back(vertex(corner));
         result.triangle_patches.push_back(p);
       }
+      // What measuring needs stays (parameters, welded ids, triangles); the rest is in the mesh.
+      PatchOutput& done = outputs_[p];
+      done.positions = {};
+      done.normals = {};
+      done.tangents = {};
     }
     result.welded_vertices = positions_used;
     welded_positions_ = std::move(welded_positions);
