@@ -124,7 +124,11 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tessellation_start).count();
   if (elapsed() > 1.0) progress << "patchwork: tessellated in " << seconds << " s, writing " << arguments.output << "\n";
   if (gltf) {
-    write_gltf(arguments.output, result.mesh);
+    // The patch set knows whether the surface has a boundary (an open edge): the lid gap shows
+    // the inside, so such a mesh is double-sided.
+    GltfOptions gltf_options;
+    gltf_options.double_sided = !set.open_edges().empty();
+    write_gltf(arguments.output, result.mesh, gltf_options);
   } else {
     write_mesh(arguments.output, welded_faces(result.mesh));
   }
