@@ -97,8 +97,26 @@ class FlipUnionFind {
     return true;
   }
 
+  /// The sets numbered 0.. by smallest face, with each face's flip relative to its set's
+  /// smallest face; uses the union-find up. (A parent is a smaller face than its child, so one
+  /// pass in face order finds every parent done, its number in place of its parent.)
+  FaceComponents number(std::vector<bool>& flip) && {
+    std::size_t count = 0;
+    for (std::uint32_t f = 0; f < parent_.size(); ++f) {
+      const std::uint32_t up = parent_[f];
+      if (up == f) {
+        parent_[f] = static_cast<std::uint32_t>(count++);
+      } else {
+        flip_[f] ^= flip_[up];
+        parent_[f] = parent_[up];
+      }
+      flip[f] = flip_[f] != 0;
+    }
+    return {std::move(parent_), count};
+  }
+
  private:
-  std::vector<std::uint32_t> parent_;
+  std::vector<std::uint32_t> parent_;  // always a smaller face, or the face itself
   std::vector<std::uint8_t> flip_;
 };
 
@@ -153,7 +171,7 @@ void walk_from(std::uint32_t root, const FaceVertexMesh& mesh, const EdgeTable& 
 OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& table) {
   const std::vector<std::uint32_t>& index = mesh.face_indices();
   const auto faces = static_cast<std::uint32_t>(mesh.face_count());
-  OrientationWalk result{{std::vector<std::uint32_t>(faces), 0}, std::vector<bool>(faces, false), {}, {}};
+  OrientationWalk result{{}, std::vector<bool>(faces, false), {}, {}};
   // Orientation classes: faces joined through edges of exactly two faces. An orientable class has
   // one consistent flip per face relative to its smallest face, whatever the order of the walk:
   // the union-find finds them (and the classes that have none) in edge order, with far better
@@ -172,24 +190,19 @@ OrientationWalk walk_orientation(const FaceVertexMesh& mesh, const EdgeTable& ta
       conflicts.push_back(first.face);
     }
   }
-  // Without crowded edges (more than two faces), the classes are the edge-connected components.
-  FaceComponents& components = result.components;
-  for (std::uint32_t f = 0; f < faces; ++f) {
-    bool flip = false;
-    const std::uint32_t root = classes.find(f, flip);
-    result.flip[f] = flip;
-    components.of_face[f] = root == f ? static_cast<std::uint32_t>(components.count++) : components.of_face[root];
-  }
-  if (crowded) components = face_components(mesh, table);
-  result.component_orientable.assign(components.count, true);
-  if (conflicts.empty()) return result;
-  // A non-orientable class has no consistent flips: its flips and the proving cycle are those of
-  // the breadth-first walk from its smallest face, class by class in that order.
-  std::vector<std::uint32_t> roots;
+  std::vector<std::uint32_t> roots;  // the smallest face of each class with a conflict
   for (std::uint32_t f : conflicts) {
     bool flip = false;
     roots.push_back(classes.find(f, flip));
   }
+  // Without crowded edges (more than two faces), the classes are the edge-connected components.
+  FaceComponents& components = result.components;
+  components = std::move(classes).number(result.flip);
+  if (crowded) components = face_components(mesh, table);
+  result.component_orientable.assign(components.count, true);
+  if (roots.empty()) return result;
+  // A non-orientable class has no consistent flips: its flips and the proving cycle are those of
+  // the breadth-first walk from its smallest face, class by class in that order.
   std::sort(roots.begin(), roots.end());
   roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
   std::vector<bool> seen(faces, false);
