@@ -49,6 +49,7 @@
 #include "meshes/interop/cgal.h"
 #include "meshes/orientation.h"
 #include "meshes/topology.h"
+#include "tests/meshes/interop/grid_pieces.h"
 #include "tests/meshes/interop/interop_test_meshes.h"
 
 namespace patchwork {
@@ -332,12 +333,7 @@ TEST(CgalCrosscheck, OutwardOrientationMatchesSignedVolume) {
 // takes every piece (a vertex never gets more triangles than its closed grid fan, so CGAL can
 // always link the fans), keeps every face exactly and agrees with analyze() on every answer.
 RC_GTEST_PROP(CgalCrosscheck, GridPiecesAgreeWithAnalyze, ()) {
-  const auto n = *rc::gen::inRange<std::uint32_t>(1, 6);
-  const auto m = *rc::gen::inRange<std::uint32_t>(1, 6);
-  const auto keep = *rc::gen::container<std::vector<bool>>(2 * n * m, rc::gen::arbitrary<bool>());
-  const auto rotation =
-      *rc::gen::container<std::vector<std::uint32_t>>(2 * n * m, rc::gen::inRange<std::uint32_t>(0, 3));
-  const FaceVertexMesh mesh = test::grid_triangles(n, m, keep, rotation);
+  const FaceVertexMesh mesh = test::drawn_grid_pieces();
   const TopologyReport r = analyze(mesh);
   RC_TAG(r.manifold ? "manifold" : "non-manifold vertices");
   RC_ASSERT(PMP::is_polygon_soup_a_polygon_mesh(to_cgal_polygon_soup(mesh).polygons) == r.manifold);

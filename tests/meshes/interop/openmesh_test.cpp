@@ -20,6 +20,7 @@
 #include "core/errors.h"
 #include "meshes/orientation.h"
 #include "meshes/topology.h"
+#include "tests/meshes/interop/grid_pieces.h"
 #include "tests/meshes/interop/interop_test_meshes.h"
 
 namespace patchwork {
@@ -182,12 +183,7 @@ TEST(OpenMeshInterop, DeletedElementsAreSkippedAndTheRestRenumbered) {
 // grid fan, so OpenMesh can always link the fans), keeps every face exactly and agrees with
 // analyze(), non-manifold vertices included.
 RC_GTEST_PROP(OpenMeshInterop, GridPiecesComeBackExactly, ()) {
-  const auto n = *rc::gen::inRange<std::uint32_t>(1, 6);
-  const auto m = *rc::gen::inRange<std::uint32_t>(1, 6);
-  const auto keep = *rc::gen::container<std::vector<bool>>(2 * n * m, rc::gen::arbitrary<bool>());
-  const auto rotation =
-      *rc::gen::container<std::vector<std::uint32_t>>(2 * n * m, rc::gen::inRange<std::uint32_t>(0, 3));
-  const FaceVertexMesh mesh = test::grid_triangles(n, m, keep, rotation);
+  const FaceVertexMesh mesh = test::drawn_grid_pieces();
   const TopologyReport r = analyze(mesh);
   RC_TAG(r.manifold ? "manifold" : "non-manifold vertices");
   const OpenMeshPolyMesh om = to_openmesh(mesh);
