@@ -15,7 +15,8 @@
 // their edge (a counting sort) and matched by the larger one within each (short) bucket; an edge
 // is numbered by the rank of its first corner in a bitmap. At a million faces the time goes into
 // touching fresh memory, so the table keeps little: a twin per corner and a first use per edge
-// (about 6 bytes per corner), the uses of crowded (non-manifold) edges apart.
+// (about 6 bytes per corner; 4 more for each corner's face when the faces differ in size), the
+// uses of crowded (non-manifold) edges apart.
 
 #include <array>
 #include <cstdint>
