@@ -13,9 +13,17 @@ add_library(patchwork_build_flags INTERFACE)
 target_compile_definitions(patchwork_build_flags INTERFACE
                            $<$<OR:$<CONFIG:Debug>,$<BOOL:${PATCHWORK_SANITIZE}>>:PATCHWORK_ENABLE_ASSERTS>)
 if(PATCHWORK_SANITIZE)
-  target_compile_options(patchwork_build_flags INTERFACE -fsanitize=address,undefined
-                         -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  # Every library and program is instrumented, except targets that set the property
+  # PATCHWORK_UNINSTRUMENTED (the test programs' own code, tests/CMakeLists.txt): they still link
+  # the sanitizer runtimes, so every access the library code makes on their behalf is checked.
+  set(instrumented "$<NOT:$<BOOL:$<TARGET_PROPERTY:PATCHWORK_UNINSTRUMENTED>>>")
+  target_compile_options(patchwork_build_flags INTERFACE
+                         "$<${instrumented}:-fsanitize=address,undefined;-fno-sanitize-recover=all>"
+                         -fno-omit-frame-pointer)
   target_link_options(patchwork_build_flags INTERFACE -fsanitize=address,undefined)
+  # Eigen picks its allocator by __SANITIZE_ADDRESS__; one choice for instrumented and plain
+  # code alike, or a matrix allocated on one side would be freed by the other allocator.
+  target_compile_definitions(patchwork_build_flags INTERFACE EIGEN_MALLOC_ALREADY_ALIGNED=0)
 endif()
 
 set_property(GLOBAL PROPERTY PATCHWORK_MODULES "")
