@@ -1,3 +1,4 @@
+#include "tests/support/refined_maximum.h"
 #include "curves/bounding_box.h"
 
 #include <gtest/gtest.h>
@@ -28,46 +29,7 @@ double max_abs(const std::vector<Point<Dim>>& P) {
   return m;
 }
 
-// max of f on [0, 1] without any root finder: 128 samples, then a golden-section search on
-// the two steps around every sampled local maximum (the first sample of a plateau). After 40
-// steps the bracket is 1e-10 wide, so f is off its maximum by ~|f''| 1e-20: rounding only.
-double refined_max(const std::function<double(double)>& f) {
-  constexpr int kSamples = 128;
-  std::vector<double> values(kSamples + 1);
-  for (int i = 0; i <= kSamples; ++i) values[static_cast<std::size_t>(i)] = f(static_cast<double>(i) / kSamples);
-  double best = -std::numeric_limits<double>::infinity();
-  const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
-  for (int i = 0; i <= kSamples; ++i) {
-    const double v = values[static_cast<std::size_t>(i)];
-    best = std::max(best, v);
-    const bool rises_to = i == 0 || values[static_cast<std::size_t>(i - 1)] < v;
-    const bool falls_from = i == kSamples || values[static_cast<std::size_t>(i + 1)] <= v;
-    if (!rises_to || !falls_from) continue;
-    double lo = std::max(0, i - 1) / static_cast<double>(kSamples);
-    double hi = std::min(kSamples, i + 1) / static_cast<double>(kSamples);
-    double x1 = hi - ratio * (hi - lo);
-    double x2 = lo + ratio * (hi - lo);
-    double f1 = f(x1);
-    double f2 = f(x2);
-    for (int iteration = 0; iteration < 40; ++iteration) {
-      if (f1 < f2) {
-        lo = x1;
-        x1 = x2;
-        f1 = f2;
-        x2 = lo + ratio * (hi - lo);
-        f2 = f(x2);
-      } else {
-        hi = x2;
-        x2 = x1;
-        f2 = f1;
-        x1 = hi - ratio * (hi - lo);
-        f1 = f(x1);
-      }
-    }
-    best = std::max({best, f1, f2});
-  }
-  return best;
-}
+using testing::refined_max;
 
 // Whether `inner` lies in `outer` enlarged by `slack` on every side.
 template <int Dim>

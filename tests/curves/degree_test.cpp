@@ -1,3 +1,4 @@
+#include "tests/support/refined_maximum.h"
 #include "curves/degree.h"
 
 #include <gmpxx.h>
@@ -156,10 +157,8 @@ double max_abs(const std::vector<ExactPoint<Dim>>& P) {
   return m;
 }
 
-// max_s |C(s) - R(s)| found without the implementation's root finder: 256 samples, then a
-// golden-section search on the two steps around every sampled local maximum (the first sample
-// of a plateau). After 40 steps the bracket is 1e-10 wide: off the maximum by rounding only.
-// Coordinates are evaluated by scalar de Casteljau (bernstein_evaluate) in the local parameter.
+// max_s |C(s) - R(s)| found without the implementation's root finder: 256 samples refined by
+// golden-section search (tests/support/refined_maximum.h). Coordinates are evaluated by scalar de Casteljau (bernstein_evaluate) in the local parameter.
 template <int Dim>
 double sampled_max_distance(const BezierCurve<Dim>& C, const BezierCurve<Dim>& R) {
   std::array<std::vector<double>, Dim> c_coordinates;
@@ -176,41 +175,7 @@ double sampled_max_distance(const BezierCurve<Dim>& C, const BezierCurve<Dim>& R
     }
     return std::sqrt(squared);
   };
-  constexpr int kSamples = 256;
-  std::vector<double> values(kSamples + 1);
-  for (int i = 0; i <= kSamples; ++i) values[static_cast<std::size_t>(i)] = distance(static_cast<double>(i) / kSamples);
-  double best = 0.0;
-  const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
-  for (int i = 0; i <= kSamples; ++i) {
-    const double v = values[static_cast<std::size_t>(i)];
-    best = std::max(best, v);
-    const bool rises_to = i == 0 || values[static_cast<std::size_t>(i - 1)] < v;
-    const bool falls_from = i == kSamples || values[static_cast<std::size_t>(i + 1)] <= v;
-    if (!rises_to || !falls_from) continue;
-    double lo = std::max(0, i - 1) / static_cast<double>(kSamples);
-    double hi = std::min(kSamples, i + 1) / static_cast<double>(kSamples);
-    double x1 = hi - ratio * (hi - lo);
-    double x2 = lo + ratio * (hi - lo);
-    double f1 = distance(x1);
-    double f2 = distance(x2);
-    for (int iteration = 0; iteration < 40; ++iteration) {
-      if (f1 < f2) {
-        lo = x1;
-        x1 = x2;
-        f1 = f2;
-        x2 = lo + ratio * (hi - lo);
-        f2 = distance(x2);
-      } else {
-        hi = x2;
-        x2 = x1;
-        f2 = f1;
-        x1 = hi - ratio * (hi - lo);
-        f1 = distance(x1);
-      }
-    }
-    best = std::max({best, f1, f2});
-  }
-  return best;
+  return testing::refined_max(distance, 256);
 }
 
 template <class F>
