@@ -360,7 +360,8 @@ std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOpt
   tinygltf::Model& model = builder.model();
   model.asset.version = "2.0";
   model.asset.generator = "patchwork";
-  model.materials.push_back(default_material(options.double_sided.value_or(has_boundary_edge(mesh))));
+  // Not value_or: the topology pass runs only when the caller did not say.
+  model.materials.push_back(default_material(options.double_sided ? *options.double_sided : has_boundary_edge(mesh)));
   tinygltf::Mesh gltf_mesh;
   gltf_mesh.name = options.name;
   gltf_mesh.primitives.push_back(std::move(primitive));
