@@ -6,27 +6,13 @@
 
 #include "core/errors.h"
 #include "io/atomic_file.h"
+#include "io/mesh_file.h"
 
 namespace patchwork {
 namespace {
 
-// A token as it may appear in a message: at most 32 bytes, anything but printable ASCII as \xNN
-// (a NUL byte from a binary file would otherwise cut what() short).
-std::string quoted(std::string_view token) {
-  constexpr std::size_t max_shown = 32;
-  static constexpr char hex[] = "0123456789abcdef";
-  std::string result = "'";
-  for (std::size_t k = 0; k < std::min(token.size(), max_shown); ++k) {
-    const auto c = static_cast<unsigned char>(token[k]);
-    if (c >= 0x20 && c < 0x7f) {
-      result += static_cast<char>(c);
-    } else {
-      result.append("\\x").append(1, hex[c >> 4]).append(1, hex[c & 0xf]);
-    }
-  }
-  if (token.size() > max_shown) result += "...";
-  return result + "'";
-}
+// Tokens in messages are quoted as in the mesh formats.
+using detail::quoted;
 
 // Reads a text line by line and splits lines into whitespace-separated tokens, remembering
 // where each token stands for error messages (line and column 1-based, columns in bytes).
