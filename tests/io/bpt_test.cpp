@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "tests/support/extreme_doubles.h"
 #include "tests/support/temporary_directory.h"
 #include "io/atomic_file.h"
 
@@ -154,18 +155,8 @@ RC_GTEST_PROP(Bpt, RoundTripIsBitExact, ()) {
 }
 
 TEST(Bpt, RoundTripKeepsSignedZeroSubnormalsAndExtremes) {
-  const double values[] = {-0.0,
-                           0.0,
-                           std::numeric_limits<double>::denorm_min(),
-                           -std::numeric_limits<double>::denorm_min(),
-                           std::numeric_limits<double>::min(),
-                           std::nextafter(std::numeric_limits<double>::min(), 0.0),
-                           std::numeric_limits<double>::max(),
-                           std::numeric_limits<double>::lowest(),
-                           0.1,
-                           1.0 / 3.0};
   std::vector<Vec3> points;
-  for (double x : values) points.emplace_back(x, -x, x * 0.5);
+  for (double x : testing::extreme_doubles()) points.emplace_back(x, -x, x * 0.5);
   points.resize(12, Vec3(1, 2, 3));
   const std::vector<BezierPatch3> patches{BezierPatch3(2, 3, points)};  // non-square: 3 x 4 points
   const std::vector<BezierPatch3> read = parse_bpt(format_bpt(patches), "extremes.bpt");

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "tests/support/extreme_doubles.h"
 #include "tests/support/temporary_directory.h"
 #include "io/atomic_file.h"
 #include "io/mesh_file.h"
@@ -276,18 +277,8 @@ RC_GTEST_PROP(MeshFormats, RoundTripIsBitExactInEveryFormat, ()) {
 }
 
 TEST(MeshFormats, RoundTripKeepsSignedZeroSubnormalsAndExtremes) {
-  const double values[] = {-0.0,
-                           0.0,
-                           std::numeric_limits<double>::denorm_min(),
-                           -std::numeric_limits<double>::denorm_min(),
-                           std::numeric_limits<double>::min(),
-                           std::nextafter(std::numeric_limits<double>::min(), 0.0),
-                           std::numeric_limits<double>::max(),
-                           std::numeric_limits<double>::lowest(),
-                           0.1,
-                           1.0 / 3.0};
   std::vector<Vec3> points;
-  for (double x : values) points.emplace_back(x, -x, x * 0.5);
+  for (double x : testing::extreme_doubles()) points.emplace_back(x, -x, x * 0.5);
   const FaceVertexMesh mesh = make_mesh(points, {{0, 1, 2}, {3, 4, 5, 6, 7, 8, 9}, {9, 9, 0}});
   for (Format format : all_formats) {
     SCOPED_TRACE(label(format));
