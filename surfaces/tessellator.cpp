@@ -236,11 +236,12 @@ class Tessellator {
       for (std::uint32_t p = 0; p < patches_.size(); ++p) {
         PatchPlan& plan = plans_[p];
         if (plan.culled) continue;
-        const TessellationPattern pattern = make_pattern(rates(p));
         const InnerGrid inner = inner_grid(rates(p));
         const int nu = inner.u;
         const int nv = inner.v;
-        if (pattern_bound(pattern, plan.bounds, nu, nv) <= plan.tolerance) continue;
+        // A plain grid meets the tolerance by construction (its rates only grew); only
+        // stitched patterns need their triangles checked.
+        if (inner.grid || pattern_bound(make_pattern(rates(p)), plan.bounds, nu, nv) <= plan.tolerance) continue;
         // Raise the direction that contributes more to the cell bound.
         if (plan.bounds.uu / (nu * nu) >= plan.bounds.vv / (nv * nv)) {
           plan.nu = nu + std::max(1, nu / 8);
