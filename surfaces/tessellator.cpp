@@ -95,8 +95,10 @@ double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeB
 
 class Tessellator {
  public:
-  Tessellator(const PatchSet& set, const TessellationOptions& options)
-      : set_(set), options_(options), patches_(set.patches()), plans_(patches_.size()), slots_(patches_.size()) {}
+  Tessellator(const SurfacePieces& pieces, const TessellationOptions& options)
+      : pieces_(pieces), options_(options), count_(pieces.count), plans_(count_), slots_(count_) {
+    PATCHWORK_ASSERT(pieces.bounds.size() == count_, "one bound per piece");
+  }
 
   Tessellation run() {
     plan_patches();
@@ -104,8 +106,8 @@ class Tessellator {
     if (!options_.segments) raise_rates_to_bounds();
     check_triangle_budget();
     number_welded_points();
-    outputs_.resize(patches_.size());
-    parallel_for(patches_.size(), options_.threads, [&](std::size_t p) {
+    outputs_.resize(count_);
+    parallel_for(count_, options_.threads, [&](std::size_t p) {
       if (!plans_[p].culled) tessellate_patch(static_cast<std::uint32_t>(p));
     });
     Tessellation result = assemble();
@@ -133,22 +135,23 @@ class Tessellator {
       tolerance = *options_.tolerance;
     } else if (options_.relative_tolerance) {
       check_positive(*options_.relative_tolerance, "relative tolerance");
-      tolerance = *options_.relative_tolerance * surface_diagonal();
+      tolerance = *options_.relative_tolerance * pieces_.diagonal;
       check_positive(tolerance, "tolerance (relative tolerance times the box diagonal)");
     } else if (options_.segments) {
       if (*options_.segments < 1 || *options_.segments > (1 << 20)) {
         throw InvalidInput(detail::message("tessellate: segments ", *options_.segments, " is not in [1, 2^20]"));
       }
     } else {
+      if (pieces_.patches == nullptr) throw InvalidInput("tessellate: the camera mode needs Bezier patches");
       validate(*options_.camera);
       check_positive(options_.pixel_tolerance, "pixel tolerance");
     }
     double focal = options_.camera ? focal_length_pixels(*options_.camera) : 0.0;
     // Patches reaching behind the near limit get the tolerance of this depth.
-    const double near_depth = 1e-3 * set_.size();
-    for (std::size_t p = 0; p < patches_.size(); ++p) {
+    const double near_depth = 1e-3 * pieces_.diagonal;
+    for (std::size_t p = 0; p < count_; ++p) {
       PatchPlan& plan = plans_[p];
-      plan.bounds = second_derivative_bounds(patches_[p], bound_pieces);
+      plan.bounds = pieces_.bounds[p];
       if (options_.segments) {
         plan.nu = plan.nv = *options_.segments;
         continue;
@@ -156,8 +159,9 @@ class Tessellator {
       plan.tolerance = tolerance;
       if (options_.camera) {
         const Camera& camera = *options_.camera;
-        plan.tolerance = options_.pixel_tolerance * std::max(nearest_depth(patches_[p], camera), near_depth) / focal;
-        plan.culled = outside_frustum(patches_[p], camera) || back_facing(patches_[p], camera.eye);
+        const BezierPatch3& patch = (*pieces_.patches)[p];
+        plan.tolerance = options_.pixel_tolerance * std::max(nearest_depth(patch, camera), near_depth) / focal;
+        plan.culled = outside_frustum(patch, camera) || back_facing(patch, camera.eye);
       }
       const GridSize grid = grid_for_tolerance(plan.bounds, plan.tolerance);
       // A curved patch keeps two segments per direction at any tolerance: with one, a tube of
@@ -172,12 +176,6 @@ class Tessellator {
     }
   }
 
-  double surface_diagonal() const {
-    Eigen::AlignedBox3d box;
-    for (const BezierPatch3& patch : patches_) box.extend(bounding_box(patch, 1e-6 * set_.size()));
-    return box.diagonal().norm();
-  }
-
   // Classes for every edge of every patch that is tessellated: a shared edge whose two patches
   // are both tessellated is one class; every other edge is its own.
   void build_edge_classes() {
@@ -185,7 +183,7 @@ class Tessellator {
       classes_.push_back({owner, collapsed, 1, no_id});
       return static_cast<std::uint32_t>(classes_.size() - 1);
     };
-    for (const SharedEdge& shared : set_.shared_edges()) {
+    for (const PieceJoin& shared : pieces_.shared) {
       const EdgeRef a = shared.first;
       const EdgeRef b = shared.second;
       if (plans_[a.patch].culled || plans_[b.patch].culled) continue;
@@ -198,9 +196,9 @@ class Tessellator {
       slots_[a.patch][static_cast<int>(a.edge)] = {c, false};
       slots_[b.patch][static_cast<int>(b.edge)] = {c, shared.reversed};
     }
-    std::vector<std::array<bool, 4>> collapsed(patches_.size(), {false, false, false, false});
-    for (const EdgeRef& e : set_.collapsed_edges()) collapsed[e.patch][static_cast<int>(e.edge)] = true;
-    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    std::vector<std::array<bool, 4>> collapsed(count_, {false, false, false, false});
+    for (const EdgeRef& e : pieces_.collapsed) collapsed[e.patch][static_cast<int>(e.edge)] = true;
+    for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       for (int k = 0; k < 4; ++k) {
         if (slots_[p][k].edge_class == no_id) slots_[p][k] = {add_class(p, collapsed[p][k]), false};
@@ -213,7 +211,7 @@ class Tessellator {
   // follows its patch's inner rate, so its triangles fan evenly into the pole.
   void update_edge_rates() {
     for (EdgeClass& c : classes_) c.rate = 1;
-    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       for (int k = 0; k < 4; ++k) {
         EdgeClass& c = classes_[slots_[p][k].edge_class];
@@ -233,7 +231,7 @@ class Tessellator {
   void raise_rates_to_bounds() {
     for (int round = 0; round < 64; ++round) {
       bool raised = false;
-      for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+      for (std::uint32_t p = 0; p < count_; ++p) {
         PatchPlan& plan = plans_[p];
         if (plan.culled) continue;
         const InnerGrid inner = inner_grid(rates(p));
@@ -258,7 +256,7 @@ class Tessellator {
 
   void check_triangle_budget() const {
     double triangles = 0.0;
-    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       const PatternRates r = rates(p);
       triangles += 2.0 * std::max(r.inner_u, 2) * std::max(r.inner_v, 2) + r.edges[0] + r.edges[1] + r.edges[2] +
@@ -275,9 +273,9 @@ class Tessellator {
   // Corners are one point where shared or collapsed edges join them; then every class's inner
   // points get a block of ids, then each patch's interior.
   void number_welded_points() {
-    UnionFind corners(4 * patches_.size());
+    UnionFind corners(4 * count_);
     const auto slot = [](std::uint32_t p, int c) { return static_cast<std::uint32_t>(4 * p + c); };
-    for (const SharedEdge& shared : set_.shared_edges()) {
+    for (const PieceJoin& shared : pieces_.shared) {
       const EdgeRef a = shared.first;
       const EdgeRef b = shared.second;
       if (plans_[a.patch].culled || plans_[b.patch].culled) continue;
@@ -286,15 +284,15 @@ class Tessellator {
       corners.unite(slot(a.patch, edge_start[ka]), slot(b.patch, shared.reversed ? edge_end[kb] : edge_start[kb]));
       corners.unite(slot(a.patch, edge_end[ka]), slot(b.patch, shared.reversed ? edge_start[kb] : edge_end[kb]));
     }
-    for (const EdgeRef& e : set_.collapsed_edges()) {
+    for (const EdgeRef& e : pieces_.collapsed) {
       if (plans_[e.patch].culled) continue;
       const int k = static_cast<int>(e.edge);
       corners.unite(slot(e.patch, edge_start[k]), slot(e.patch, edge_end[k]));
     }
-    corner_ids_.assign(4 * patches_.size(), no_id);
-    corner_owner_.assign(4 * patches_.size(), false);
+    corner_ids_.assign(4 * count_, no_id);
+    corner_owner_.assign(4 * count_, false);
     std::uint32_t next = 0;
-    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       for (int c = 0; c < 4; ++c) {
         const std::uint32_t root = corners.find(slot(p, c));
@@ -308,8 +306,8 @@ class Tessellator {
       c.first_id = next;
       next += static_cast<std::uint32_t>(c.rate - 1);
     }
-    interior_first_.assign(patches_.size(), no_id);
-    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    interior_first_.assign(count_, no_id);
+    for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       const InnerGrid inner = inner_grid(rates(p));
       interior_first_[p] = next;
@@ -321,7 +319,6 @@ class Tessellator {
   // --- per patch ----------------------------------------------------------------------------
 
   void tessellate_patch(std::uint32_t p) {
-    const BezierPatch3& patch = patches_[p];
     PatchOutput& out = outputs_[p];
     const PatternRates r = rates(p);
     out.pattern = make_pattern(r);
@@ -359,7 +356,7 @@ class Tessellator {
           break;
       }
     }
-    evaluate(patch, r, nu, nv, out);
+    evaluate(p, r, nu, nv, out);
     const auto degenerate = [&](const Triangle& t) {
       return out.welded[t[0]] == out.welded[t[1]] || out.welded[t[1]] == out.welded[t[2]] ||
              out.welded[t[0]] == out.welded[t[2]];
@@ -380,13 +377,11 @@ class Tessellator {
 
   // Positions, normals (and tangents) of every pattern point: the interior as one grid, each
   // side (with its corners) as a one-row grid.
-  void evaluate(const BezierPatch3& patch, const PatternRates& r, int nu, int nv, PatchOutput& out) const {
+  void evaluate(std::uint32_t p, const PatternRates& r, int nu, int nv, PatchOutput& out) const {
     const std::size_t count = out.pattern.points.size();
     out.positions.resize(count);
     out.normals.resize(count);
     if (options_.tangents) out.tangents.resize(count);
-    const int n = patch.degree_u();
-    const int m = patch.degree_v();
     const auto store = [&](const PatchGridSamples& samples, std::size_t sample, std::uint32_t point) {
       out.positions[point] = samples.points[sample];
       out.normals[point] = samples.normals[sample];
@@ -404,8 +399,8 @@ class Tessellator {
       const std::vector<double> ts = along_u ? ramp(0, e, e) : ramp(1, e - 1, e);
       if (ts.empty()) continue;
       const std::vector<double> fixed = {k == 1 || k == 2 ? 1.0 : 0.0};
-      const PatchGridWeights weights = along_u ? PatchGridWeights(n, m, ts, fixed) : PatchGridWeights(n, m, fixed, ts);
-      const PatchGridSamples samples = evaluate_grid(patch, weights, options_.tangents);
+      const PatchGridSamples samples = along_u ? pieces_.evaluate_grid(p, ts, fixed, options_.tangents)
+                                               : pieces_.evaluate_grid(p, fixed, ts, options_.tangents);
       const std::uint32_t first = first_edge_point(r, k);
       for (std::size_t s = 0; s < ts.size(); ++s) {
         std::uint32_t point;
@@ -422,8 +417,8 @@ class Tessellator {
       }
     }
     if (nu < 2 || nv < 2) return;
-    const PatchGridWeights weights(n, m, ramp(1, nu - 1, nu), ramp(1, nv - 1, nv));
-    const PatchGridSamples samples = evaluate_grid(patch, weights, options_.tangents);
+    const PatchGridSamples samples =
+        pieces_.evaluate_grid(p, ramp(1, nu - 1, nu), ramp(1, nv - 1, nv), options_.tangents);
     const std::uint32_t first = first_edge_point(r, 3) + static_cast<std::uint32_t>(r.edges[3] - 1);
     for (std::size_t s = 0; s < samples.points.size(); ++s) store(samples, s, first + static_cast<std::uint32_t>(s));
   }
@@ -433,8 +428,8 @@ class Tessellator {
   Vec2 uv_of(std::uint32_t p, const Vec2& uv) const {
     if (options_.uv != UvMode::atlas) return uv;
     // Patches in a grid of equal cells, each inset by a gutter of 2% of the cell.
-    const auto columns = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(patches_.size()))));
-    const std::size_t rows = (patches_.size() + columns - 1) / columns;
+    const auto columns = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(count_))));
+    const std::size_t rows = (count_ + columns - 1) / columns;
     const Vec2 cell(1.0 / static_cast<double>(columns), 1.0 / static_cast<double>(rows));
     const Vec2 origin(static_cast<double>(p % columns) * cell.x(), static_cast<double>(p / columns) * cell.y());
     return origin + 0.02 * cell + 0.96 * uv.cwiseProduct(cell);
@@ -471,7 +466,7 @@ class Tessellator {
     std::uint32_t positions_used = 0;
     const double cos_crease = std::cos(options_.crease_angle);
     const bool with_uv = options_.uv != UvMode::none;
-    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       const PatchOutput& out = outputs_[p];
       result.error_bound = std::max(result.error_bound, out.bound);
@@ -529,7 +524,7 @@ class Tessellator {
                                                                       {1.0 / 6, 2.0 / 3, 1.0 / 6},
                                                                       {1.0 / 6, 1.0 / 6, 2.0 / 3}}};
     std::vector<std::uint32_t> tessellated;
-    for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+    for (std::uint32_t p = 0; p < count_; ++p) {
       if (!plans_[p].culled) tessellated.push_back(p);
     }
     std::vector<double> errors(tessellated.size(), 0.0);
@@ -546,7 +541,7 @@ class Tessellator {
               uv += w[c] * out.pattern.points[t[c]].uv;
               linear += w[c] * welded_positions_[out.welded[t[c]]];
             }
-            error = std::max(error, (patches_[p].evaluate(uv.x(), uv.y()) - linear).norm());
+            error = std::max(error, (pieces_.evaluate(p, uv.x(), uv.y()) - linear).norm());
           }
         }
       }
@@ -584,9 +579,9 @@ class Tessellator {
     }
   }
 
-  const PatchSet& set_;
+  const SurfacePieces& pieces_;
   const TessellationOptions& options_;
-  const std::vector<BezierPatch3>& patches_;
+  std::size_t count_;
   std::vector<PatchPlan> plans_;
   std::vector<std::array<EdgeSlot, 4>> slots_;
   std::vector<EdgeClass> classes_;
@@ -602,8 +597,35 @@ class Tessellator {
 
 }  // namespace
 
+Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& options) {
+  return Tessellator(pieces, options).run();
+}
+
+SurfacePieces surface_pieces(const PatchSet& set) {
+  const std::vector<BezierPatch3>& patches = set.patches();
+  SurfacePieces pieces;
+  pieces.count = patches.size();
+  pieces.patches = &patches;
+  for (const SharedEdge& shared : set.shared_edges()) pieces.shared.push_back({shared.first, shared.second, shared.reversed});
+  pieces.collapsed = set.collapsed_edges();
+  pieces.bounds.resize(patches.size());
+  Eigen::AlignedBox3d box;
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    pieces.bounds[p] = second_derivative_bounds(patches[p], bound_pieces);
+    box.extend(bounding_box(patches[p], 1e-6 * set.size()));
+  }
+  pieces.diagonal = box.diagonal().norm();
+  pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
+                                    bool with_tangents) {
+    const BezierPatch3& patch = patches[p];
+    return evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), us, vs), with_tangents);
+  };
+  pieces.evaluate = [&patches](std::uint32_t p, double u, double v) { return patches[p].evaluate(u, v); };
+  return pieces;
+}
+
 Tessellation tessellate(const PatchSet& set, const TessellationOptions& options) {
-  return Tessellator(set, options).run();
+  return tessellate(surface_pieces(set), options);
 }
 
 }  // namespace patchwork

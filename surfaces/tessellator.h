@@ -35,11 +35,15 @@
 // outside the frustum or facing away are not tessellated (surfaces/view_culling.h).
 
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/types.h"
 #include "meshes/render_mesh.h"
+#include "surfaces/patch_flatness.h"
+#include "surfaces/patch_grid.h"
 #include "surfaces/patch_set.h"
 #include "surfaces/view_culling.h"
 
@@ -92,6 +96,44 @@ struct Tessellation {
   /// Welded points (distinct position ids).
   std::size_t welded_vertices = 0;
 };
+
+/// Two piece edges that are one edge of the surface.
+struct PieceJoin {
+  EdgeRef first;
+  EdgeRef second;
+  /// The second runs against the first (in boundary_curve direction).
+  bool reversed;
+};
+
+/// A surface made of pieces, each parametrised over [0,1]^2 with the edges and corners of a
+/// patch: the patches of a PatchSet, or the faces of a subdivision limit surface (subdivision/).
+/// The tessellator needs no more than this.
+struct SurfacePieces {
+  std::size_t count = 0;
+  /// Edges shared by two pieces.
+  std::vector<PieceJoin> shared;
+  /// Edges that are one point.
+  std::vector<EdgeRef> collapsed;
+  /// Bounds on the second derivatives of each piece over [0,1]^2 (the guarantee rests on them).
+  std::vector<SecondDerivativeBounds> bounds;
+  /// Diagonal of a box holding the surface (relative tolerances are fractions of it).
+  double diagonal = 0.0;
+  /// Piece p at every point of the grid us x vs (stored as evaluate_grid stores them).
+  std::function<PatchGridSamples(std::uint32_t p, std::span<const double> us, std::span<const double> vs,
+                                 bool with_tangents)>
+      evaluate_grid;
+  /// One point of piece p.
+  std::function<Vec3(std::uint32_t p, double u, double v)> evaluate;
+  /// The pieces as Bezier patches, when they are (the camera mode needs them; else null).
+  const std::vector<BezierPatch3>* patches = nullptr;
+};
+
+/// Tessellates any surface made of pieces (see the file comment).
+/// \throws InvalidInput as tessellate(PatchSet) does, and for a camera without `patches`.
+Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& options);
+
+/// The pieces of a patch set: its patches, shared and collapsed edges, bounds from 4 x 4 sub-nets.
+SurfacePieces surface_pieces(const PatchSet& set);
 
 /// Tessellates `set` (see the file comment).
 /// \throws InvalidInput if the options do not name exactly one of the modes, a tolerance is not
