@@ -1,0 +1,149 @@
+#include "subdivision/cage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.h"
+#include "meshes/edge_table.h"
+#include "meshes/topology.h"
+
+namespace patchwork {
+
+namespace {
+
+void check_sharpness(double sharpness, const char* what, std::size_t index) {
+  if (std::isnan(sharpness) || sharpness < 0.0) {
+    throw InvalidInput(detail::message("validate_cage: ", what, " ", index, " has sharpness ", sharpness,
+                                       " (must be >= 0; infinity for infinitely sharp)"));
+  }
+}
+
+void check_topology(const FaceVertexMesh& mesh) {
+  const TopologyReport report = analyze(mesh);
+  if (!report.faces_repeating_a_vertex.empty()) {
+    throw TopologyError(detail::message("validate_cage: face ", report.faces_repeating_a_vertex.front(),
+                                        " uses a vertex more than once"));
+  }
+  if (!report.non_manifold_edges.empty()) {
+    const auto& e = report.non_manifold_edges.front();
+    throw TopologyError(detail::message("validate_cage: edge (", e[0], ", ", e[1],
+                                        ") has more than two faces (non-manifold)"));
+  }
+  if (!report.non_manifold_vertices.empty()) {
+    throw TopologyError(detail::message("validate_cage: vertex ", report.non_manifold_vertices.front(),
+                                        " is non-manifold (its faces form more than one fan)"));
+  }
+  if (!report.orientable) {
+    throw TopologyError("validate_cage: the mesh is not orientable (a Moebius band or Klein bottle has no "
+                        "consistent normal, and no subdivision surface)");
+  }
+  // Two faces on an edge must walk it in opposite directions.
+  const detail::EdgeTable table(mesh);
+  const auto& corners = mesh.face_indices();
+  for (std::uint32_t c = 0; c < corners.size(); ++c) {
+    const std::uint32_t t = table.twin(c);
+    if (t >= detail::EdgeTable::crowded) continue;
+    if (corners[c] == corners[t]) {
+      throw TopologyError(detail::message("validate_cage: faces ", table.face_of(c), " and ", table.face_of(t),
+                                          " walk edge (", corners[c], ", ", corners[table.next_corner(c)],
+                                          ") in the same direction (orient() the mesh first)"));
+    }
+  }
+}
+
+}  // namespace
+
+void validate_cage(const SubdivisionCage& cage) {
+  const FaceVertexMesh& mesh = cage.mesh;
+  if (mesh.face_count() == 0) throw InvalidInput("validate_cage: the cage has no face");
+  if (cage.options.scheme == SubdivisionScheme::loop) {
+    for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+      if (mesh.face_sizes()[f] != 3) {
+        throw TopologyError(detail::message("validate_cage: Loop subdivision needs triangles; face ", f, " has ",
+                                            mesh.face_sizes()[f], " corners (triangulate it or use catmull-clark)"));
+      }
+    }
+  }
+  check_topology(mesh);
+
+  const auto vertex_count = mesh.vertex_count();
+  const detail::EdgeTable table(mesh);
+  for (std::size_t k = 0; k < cage.creases.size(); ++k) {
+    const Crease& crease = cage.creases[k];
+    if (crease.a >= vertex_count || crease.b >= vertex_count) {
+      throw InvalidInput(detail::message("validate_cage: crease ", k, " names vertex ",
+                                         std::max(crease.a, crease.b), " of ", vertex_count));
+    }
+    check_sharpness(crease.sharpness, "crease", k);
+  }
+  if (!cage.creases.empty()) {
+    // Each crease must be an edge of the cage.
+    std::vector<std::vector<std::uint32_t>> neighbours(vertex_count);
+    for (std::size_t e = 0; e < table.edge_count(); ++e) {
+      const auto [a, b] = table.vertices(e);
+      neighbours[a].push_back(b);
+      neighbours[b].push_back(a);
+    }
+    for (std::size_t k = 0; k < cage.creases.size(); ++k) {
+      const auto& around = neighbours[cage.creases[k].a];
+      if (std::find(around.begin(), around.end(), cage.creases[k].b) == around.end()) {
+        throw InvalidInput(detail::message("validate_cage: crease ", k, " (", cage.creases[k].a, ", ",
+                                           cage.creases[k].b, ") is not an edge of the cage"));
+      }
+    }
+  }
+  for (std::size_t k = 0; k < cage.corners.size(); ++k) {
+    if (cage.corners[k].vertex >= vertex_count) {
+      throw InvalidInput(detail::message("validate_cage: corner ", k, " names vertex ", cage.corners[k].vertex,
+                                         " of ", vertex_count));
+    }
+    check_sharpness(cage.corners[k].sharpness, "corner", k);
+  }
+  for (std::size_t k = 0; k < cage.holes.size(); ++k) {
+    if (cage.holes[k] >= mesh.face_count()) {
+      throw InvalidInput(detail::message("validate_cage: hole ", k, " names face ", cage.holes[k], " of ",
+                                         mesh.face_count()));
+    }
+  }
+  if (cage.vertex_data.cols() > 0 && static_cast<std::size_t>(cage.vertex_data.rows()) != vertex_count) {
+    throw InvalidInput(detail::message("validate_cage: vertex data has ", cage.vertex_data.rows(),
+                                       " rows for ", vertex_count, " vertices"));
+  }
+  if (!cage.vertex_data.allFinite()) throw InvalidInput("validate_cage: vertex data has a value that is not finite");
+  if (cage.face_varying) {
+    const FaceVaryingData& data = *cage.face_varying;
+    if (data.indices.size() != mesh.face_indices().size()) {
+      throw InvalidInput(detail::message("validate_cage: face-varying data has ", data.indices.size(),
+                                         " indices for ", mesh.face_indices().size(), " face corners"));
+    }
+    for (std::size_t c = 0; c < data.indices.size(); ++c) {
+      if (data.indices[c] >= static_cast<std::size_t>(data.values.rows())) {
+        throw InvalidInput(detail::message("validate_cage: face-varying index ", c, " is ", data.indices[c], " of ",
+                                           data.values.rows(), " values"));
+      }
+    }
+    if (data.values.cols() == 0) throw InvalidInput("validate_cage: face-varying values have no column");
+    if (!data.values.allFinite()) {
+      throw InvalidInput("validate_cage: face-varying data has a value that is not finite");
+    }
+  }
+}
+
+const char* scheme_name(SubdivisionScheme scheme) {
+  switch (scheme) {
+    case SubdivisionScheme::catmull_clark: return "catmull-clark";
+    case SubdivisionScheme::loop: return "loop";
+    case SubdivisionScheme::bilinear: return "bilinear";
+  }
+  return "?";
+}
+
+SubdivisionScheme parse_scheme(const std::string& name) {
+  for (auto scheme : {SubdivisionScheme::catmull_clark, SubdivisionScheme::loop, SubdivisionScheme::bilinear}) {
+    if (name == scheme_name(scheme)) return scheme;
+  }
+  throw InvalidInput(detail::message("unknown subdivision scheme '", name,
+                                     "' (expected catmull-clark, loop or bilinear)"));
+}
+
+}  // namespace patchwork

@@ -1,0 +1,39 @@
+#pragma once
+// Internal to subdivision/: the bridge to OpenSubdiv. Only the subdivision .cpp files include
+// this header; no public header names an OpenSubdiv type.
+
+#include <memory>
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyRefiner.h>
+
+#include "subdivision/cage.h"
+
+namespace patchwork::detail {
+
+/// A validated cage as an OpenSubdiv topology refiner (not yet refined). OpenSubdiv's errors
+/// become TopologyError. \throws what validate_cage() throws.
+std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> make_refiner(const SubdivisionCage& cage);
+
+/// One row of a row-major array of doubles, as OpenSubdiv's primvar interpolation wants it.
+struct PrimvarRow {
+  double* values;
+  int size;
+  void Clear() {
+    for (int k = 0; k < size; ++k) values[k] = 0.0;
+  }
+  void AddWithWeight(const PrimvarRow& source, double weight) {
+    for (int k = 0; k < size; ++k) values[k] += weight * source.values[k];
+  }
+};
+
+/// A row-major array of rows of `size` doubles; operator[] hands out rows.
+struct PrimvarRows {
+  double* base;
+  int size;
+  PrimvarRow operator[](int index) const { return {base + static_cast<std::ptrdiff_t>(index) * size, size}; }
+};
+
+using PrimvarRefiner = OpenSubdiv::Far::PrimvarRefinerReal<double>;
+
+}  // namespace patchwork::detail

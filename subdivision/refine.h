@@ -1,0 +1,42 @@
+#pragma once
+// Uniform subdivision of a cage through OpenSubdiv (Far::TopologyRefiner and PrimvarRefiner).
+//
+// Level k of Catmull-Clark or bilinear subdivision has one quad per face corner at level 1 and
+// four per quad after that; Loop has four triangles per triangle per level. The result is a
+// cage again (positions, vertex data, face-varying values and the tags as they are at level k:
+// semi-sharp creases lose one unit of sharpness per level), so it can be refined further or
+// turned into a limit surface.
+
+#include <cstdint>
+
+#include "meshes/topology.h"
+#include "subdivision/cage.h"
+
+namespace patchwork {
+
+/// The largest number of faces a refinement may produce (about 6 GiB of output).
+inline constexpr std::int64_t max_refined_faces = 100'000'000;
+
+/// The most levels of uniform refinement (OpenSubdiv's limit).
+inline constexpr int max_refinement_levels = 10;
+
+struct UniformRefinement {
+  /// The level-k mesh with its data and tags (hole faces included and listed in cage.holes).
+  SubdivisionCage cage;
+  /// The topology of the surface: the level-k faces that are not holes.
+  TopologyReport topology;
+  int level;
+};
+
+/// The number of faces uniform refinement to `levels` produces (closed form, no refinement).
+std::int64_t refined_face_count(const FaceVertexMesh& mesh, SubdivisionScheme scheme, int levels);
+
+/// Refines `cage` uniformly `levels` times (0 returns it as it is).
+/// \throws what validate_cage() throws; InvalidInput unless 0 <= levels <= 10 and the result
+///         has at most max_refined_faces faces.
+UniformRefinement refine_uniform(const SubdivisionCage& cage, int levels);
+
+/// The faces of the cage that are not holes, over the same vertices.
+FaceVertexMesh surface_faces(const SubdivisionCage& cage);
+
+}  // namespace patchwork

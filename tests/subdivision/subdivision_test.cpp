@@ -1,0 +1,516 @@
+// Subdivision through OpenSubdiv: counts by closed forms, topology kept at every level, limit
+// points against the uniform bicubic B-spline written out here, Bezier export against
+// OpenSubdiv's own evaluation, sharp creases, Loop towards the sphere, exact primvars, errors,
+// and the limit surface tessellated like a patch set.
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.h"
+#include "meshes/render_mesh.h"
+#include "meshes/topology.h"
+#include "subdivision/limit_surface.h"
+#include "subdivision/limit_tessellator.h"
+#include "subdivision/refine.h"
+#include "tests/meshes/face_lists.h"
+#include "tests/meshes/mesh_generators.h"
+
+namespace patchwork {
+namespace {
+
+using testing::error_message;
+using testing::FaceList;
+using testing::make_mesh;
+
+// The unit cube with outward faces.
+FaceVertexMesh cube() {
+  const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                    {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const FaceList faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  return make_mesh(points, faces);
+}
+
+SubdivisionCage cage_of(FaceVertexMesh mesh, SubdivisionScheme scheme = SubdivisionScheme::catmull_clark) {
+  SubdivisionCage cage;
+  cage.mesh = std::move(mesh);
+  cage.options.scheme = scheme;
+  return cage;
+}
+
+// A rows x cols grid of vertices (i, j) on a torus, perturbed, glued in both directions; face
+// (i, j) has corners (i, j), (i+1, j), (i+1, j+1), (i, j+1), so u runs along i and v along j.
+struct TorusGrid {
+  int rows;
+  int cols;
+  std::vector<Vec3> points;
+  const Vec3& at(int i, int j) const { return points[static_cast<std::size_t>(((i % rows + rows) % rows) * cols + (j % cols + cols) % cols)]; }
+  FaceVertexMesh mesh() const {
+    FaceList faces;
+    const auto id = [&](int i, int j) { return static_cast<std::uint32_t>((i % rows) * cols + j % cols); };
+    for (int i = 0; i < rows; ++i) {
+      for (int j = 0; j < cols; ++j) faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+    return make_mesh(points, faces);
+  }
+};
+
+TorusGrid torus_grid(int rows, int cols, testing::Random& random) {
+  TorusGrid grid{rows, cols, {}};
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      const double a = 2 * std::numbers::pi * i / rows;
+      const double b = 2 * std::numbers::pi * j / cols;
+      const double r = 1.0 + random.uniform(-0.1, 0.1);
+      grid.points.emplace_back((3 + r * std::cos(b)) * std::cos(a), (3 + r * std::cos(b)) * std::sin(a),
+                               r * std::sin(b) + random.uniform(-0.1, 0.1));
+    }
+  }
+  return grid;
+}
+
+// The uniform cubic B-spline basis on [0, 1].
+std::array<double, 4> bspline_basis(double t) {
+  const double s = 1 - t;
+  return {s * s * s / 6, (3 * t * t * t - 6 * t * t + 4) / 6, (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6,
+          t * t * t / 6};
+}
+
+Vec3 bspline_point(const TorusGrid& grid, int i, int j, double u, double v) {
+  const auto bu = bspline_basis(u);
+  const auto bv = bspline_basis(v);
+  Vec3 point = Vec3::Zero();
+  for (int a = 0; a < 4; ++a) {
+    for (int b = 0; b < 4; ++b) point += bu[a] * bv[b] * grid.at(i - 1 + a, j - 1 + b);
+  }
+  return point;
+}
+
+// ---------------------------------------------------------------------------------------------
+// counts
+
+struct Counts {
+  Count v, e, f;
+};
+
+// One level by the closed forms: the quad schemes make a vertex per face, edge and vertex and a
+// quad per face corner; Loop a vertex per vertex and edge and four triangles per triangle.
+Counts next_level(Counts c, Count corners, SubdivisionScheme scheme) {
+  if (scheme == SubdivisionScheme::loop) return {c.v + c.e, 2 * c.e + 3 * c.f, 4 * c.f};
+  return {c.v + c.e + c.f, 2 * c.e + corners, corners};
+}
+
+TEST(Subdivision, CountsFollowTheClosedForms) {
+  // A mesh of triangles, quads and a pentagon (an open box with a pentagon lid split off).
+  const std::vector<Vec3> points = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, -1, 0}, {3, 1, 0}, {1, 3, 0.5}};
+  const FaceList faces = {{0, 4, 1, 2, 3}, {1, 4, 5}, {1, 5, 2}, {2, 5, 6}, {3, 2, 6}};
+  const FaceVertexMesh mixed = make_mesh(points, faces);
+  for (auto scheme : {SubdivisionScheme::catmull_clark, SubdivisionScheme::bilinear}) {
+    const TopologyReport base = analyze(mixed);
+    Counts c{base.vertices, base.edges, base.faces};
+    Count corners = static_cast<Count>(mixed.face_indices().size());
+    for (int level = 1; level <= 3; ++level) {
+      c = next_level(c, corners, scheme);
+      corners = 4 * c.f;  // all quads from level 1 on
+      const UniformRefinement refined = refine_uniform(cage_of(mixed, scheme), level);
+      EXPECT_EQ(refined.topology.vertices, c.v) << scheme_name(scheme) << " level " << level;
+      EXPECT_EQ(refined.topology.edges, c.e) << level;
+      EXPECT_EQ(refined.topology.faces, c.f) << level;
+      EXPECT_EQ(refined.topology.faces, refined_face_count(mixed, scheme, level));
+    }
+  }
+  // A quad mesh's faces grow by 4^k; a triangle mesh under Loop likewise.
+  for (int level = 0; level <= 4; ++level) {
+    EXPECT_EQ(refine_uniform(cage_of(cube()), level).topology.faces, 6 * (Count{1} << (2 * level)));
+    const UniformRefinement loop = refine_uniform(cage_of(testing::tetrahedron(), SubdivisionScheme::loop), level);
+    Counts c{4, 6, 4};
+    for (int k = 0; k < level; ++k) c = next_level(c, 0, SubdivisionScheme::loop);
+    EXPECT_EQ(loop.topology.vertices, c.v);
+    EXPECT_EQ(loop.topology.edges, c.e);
+    EXPECT_EQ(loop.topology.faces, c.f);
+  }
+}
+
+RC_GTEST_PROP(Subdivision, TopologyIsKeptAtEveryLevel, ()) {
+  testing::Random random(*rc::gen::arbitrary<std::uint64_t>());
+  const testing::KnownSurface surface = testing::orientable_surface(random, 2);
+  const bool triangles = surface.mesh.face_sizes()[0] == 3;
+  const auto scheme = triangles && random.coin() ? SubdivisionScheme::loop
+                                                 : (random.coin() ? SubdivisionScheme::catmull_clark
+                                                                  : SubdivisionScheme::bilinear);
+  const int levels = random.coin() ? 2 : 1;
+  const UniformRefinement refined = refine_uniform(cage_of(surface.mesh, scheme), levels);
+  const TopologyReport& report = refined.topology;
+  RC_ASSERT(report.euler == surface.euler);
+  RC_ASSERT(report.boundary_loops == surface.boundary_loops);
+  RC_ASSERT(report.components == surface.components);
+  RC_ASSERT(report.orientable);
+  RC_ASSERT(report.manifold);
+  RC_ASSERT(report.genus == surface.genus);
+  RC_ASSERT(report.faces == refined_face_count(surface.mesh, scheme, levels));
+}
+
+RC_GTEST_PROP(Subdivision, NonOrientableAndNonManifoldCagesAreRefused, ()) {
+  testing::Random random(*rc::gen::arbitrary<std::uint64_t>());
+  const testing::KnownSurface surface = testing::non_orientable_surface(random);
+  RC_ASSERT(!error_message<TopologyError>([&] { refine_uniform(cage_of(surface.mesh), 1); }).empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// the limit surface
+
+TEST(LimitSurface, RegularGridIsTheUniformBicubicBSpline) {
+  testing::Random random(7);
+  const TorusGrid grid = torus_grid(6, 7, random);
+  const SubdivisionCage cage = cage_of(grid.mesh());
+  const LimitSurface surface(cage);
+  double worst = 0.0;
+  for (int i = 0; i < grid.rows; ++i) {
+    for (int j = 0; j < grid.cols; ++j) {
+      const std::size_t f = static_cast<std::size_t>(i * grid.cols + j);
+      for (int k = 0; k < 5; ++k) {
+        const double u = random.uniform(0, 1);
+        const double v = random.uniform(0, 1);
+        worst = std::max(worst, (surface.evaluate(f, u, v).position - bspline_point(grid, i, j, u, v)).norm());
+      }
+    }
+  }
+  EXPECT_LT(worst, 1e-12);
+  // Limit points at the vertices: the tensor mask (1 4 1)/6 x (1 4 1)/6.
+  const VertexLimits limits = limit_at_vertices(cage);
+  for (int i = 0; i < grid.rows; ++i) {
+    for (int j = 0; j < grid.cols; ++j) {
+      const Vec3 expected = bspline_point(grid, i, j, 0.0, 0.0);
+      EXPECT_LT((limits.positions[static_cast<std::size_t>(i * grid.cols + j)] - expected).norm(), 1e-12);
+      // The normal is du x dv there, as at the face's corner.
+      const LimitPoint corner = surface.evaluate(static_cast<std::size_t>(i * grid.cols + j), 0, 0);
+      EXPECT_GT(limits.normals[static_cast<std::size_t>(i * grid.cols + j)].dot(corner.normal), 1 - 1e-9);
+    }
+  }
+}
+
+// The derivatives OpenSubdiv returns are those of the position (central differences).
+TEST(LimitSurface, DerivativesMatchDifferences) {
+  SubdivisionCage cage = cage_of(cube());
+  const LimitSurface surface(cage);
+  const double h = 1e-6;
+  for (std::size_t f = 0; f < 6; ++f) {
+    const LimitPoint p = surface.evaluate(f, 0.3, 0.6);
+    const Vec3 du = (surface.position(f, 0.3 + h, 0.6) - surface.position(f, 0.3 - h, 0.6)) / (2 * h);
+    const Vec3 dv = (surface.position(f, 0.3, 0.6 + h) - surface.position(f, 0.3, 0.6 - h)) / (2 * h);
+    EXPECT_LT((p.du - du).norm(), 1e-7);
+    EXPECT_LT((p.dv - dv).norm(), 1e-7);
+    // Outward on the cube.
+    EXPECT_GT(p.normal.dot(p.position - Vec3(0.5, 0.5, 0.5)), 0.0);
+  }
+}
+
+// Bezier patches from B-splines (phantom rows at boundaries, end caps at extraordinary
+// vertices) evaluate where OpenSubdiv evaluates, on a mesh with every kind of patch.
+TEST(LimitSurface, BezierPatchesEvaluateLikeThePatchTable) {
+  // An open box (5 faces: boundary, corners, extraordinary vertices of valence 3) with a crease
+  // and a semi-sharp corner, and a pentagon and triangle elsewhere.
+  FaceVertexMesh box = cube();
+  FaceList faces = testing::faces_of(box);
+  faces.erase(faces.begin() + 1);  // the top is open
+  SubdivisionCage cage = cage_of(make_mesh(testing::points_of(box), faces));
+  cage.creases.push_back({0, 1, 2.5});
+  cage.corners.push_back({2, 1.0});
+  const LimitSurface surface(cage, 3);
+  const std::vector<BezierPatch3> patches = surface.bezier_patches();
+  const std::vector<std::uint32_t> faces_of_patches = surface.patch_faces();
+  ASSERT_EQ(patches.size(), surface.patch_count());
+  // Each patch covers a dyadic square of its face; find it from the corners' evaluation.
+  testing::Random random(3);
+  double worst = 0.0;
+  std::size_t checked = 0;
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    const std::size_t f = faces_of_patches[p];
+    // Sample the face, keep the points whose patch is p: the Bezier point at the local
+    // parameters must equal the face's point. The local square is found by search over depths.
+    for (int depth = 0; depth <= 3; ++depth) {
+      const int n = 1 << depth;
+      for (int a = 0; a < n; ++a) {
+        for (int b = 0; b < n; ++b) {
+          const double u = (a + 0.5) / n;
+          const double v = (b + 0.5) / n;
+          if ((patches[p].evaluate(0.5, 0.5) - surface.position(f, u, v)).norm() > 1e-9) continue;
+          for (int k = 0; k < 4; ++k) {
+            const double s = random.uniform(0, 1);
+            const double t = random.uniform(0, 1);
+            worst = std::max(worst, (patches[p].evaluate(s, t) - surface.position(f, (a + s) / n, (b + t) / n)).norm());
+          }
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GE(checked, patches.size());
+  EXPECT_LT(worst, 1e-12);
+}
+
+// Where every patch is regular, the Bezier patches join as the B-splines do: C^2, and closed.
+TEST(LimitSurface, RegularPatchesJoinC2AsAPatchSet) {
+  testing::Random random(11);
+  const TorusGrid grid = torus_grid(5, 6, random);
+  const LimitSurface surface(cage_of(grid.mesh()));
+  const PatchSetReport r = report(to_patch_set(surface));
+  EXPECT_EQ(r.patches, 30u);
+  EXPECT_TRUE(r.closed);
+  EXPECT_TRUE(r.consistently_oriented);
+  EXPECT_EQ(r.shared_edges, 60u);
+  EXPECT_EQ(r.min_ck, 2);
+}
+
+TEST(LimitSurface, InfinitelySharpCreasesKeepTheCubesEdgesStraight) {
+  SubdivisionCage cage = cage_of(cube());
+  const TopologyReport base = analyze(cage.mesh);
+  for (std::uint32_t a = 0; a < 8; ++a) {
+    for (std::uint32_t b = a + 1; b < 8; ++b) {
+      // Cube edges join vertices that differ in one coordinate.
+      const Vec3 d = cage.mesh.position(a) - cage.mesh.position(b);
+      if (std::abs(d.norm() - 1.0) < 1e-12) cage.creases.push_back({a, b, std::numeric_limits<double>::infinity()});
+    }
+  }
+  ASSERT_EQ(cage.creases.size(), static_cast<std::size_t>(base.edges));
+  // Refined vertices on a cube edge stay on it; the limit of each face is flat.
+  const UniformRefinement refined = refine_uniform(cage, 3);
+  for (std::size_t v = 0; v < refined.cage.mesh.vertex_count(); ++v) {
+    const Vec3 p = refined.cage.mesh.position(v);
+    int on_faces = 0;
+    for (int k = 0; k < 3; ++k) on_faces += (p[k] == 0.0 || p[k] == 1.0) ? 1 : 0;
+    EXPECT_GE(on_faces, 1) << "vertex " << v << " left the cube: " << p.transpose();
+  }
+  const LimitSurface surface(cage);
+  for (std::size_t f = 0; f < 6; ++f) {
+    for (double t : {0.0, 0.25, 0.5, 0.9}) {
+      // Along the face's edge v = 0, two coordinates stay at 0 or 1 (a cube edge).
+      const Vec3 p = surface.position(f, t, 0.0);
+      int fixed = 0;
+      for (int k = 0; k < 3; ++k) fixed += (std::abs(p[k]) < 1e-12 || std::abs(p[k] - 1.0) < 1e-12) ? 1 : 0;
+      EXPECT_GE(fixed, 2) << "face " << f << " t " << t << ": " << p.transpose();
+    }
+  }
+  // Semi-sharp creases lose one unit per level.
+  SubdivisionCage semi = cage_of(cube());
+  semi.creases.push_back({0, 1, 2.0});
+  const UniformRefinement one = refine_uniform(semi, 1);
+  ASSERT_EQ(one.cage.creases.size(), 2u);  // the two halves of the edge
+  for (const Crease& crease : one.cage.creases) EXPECT_DOUBLE_EQ(crease.sharpness, 1.0);
+  EXPECT_TRUE(refine_uniform(semi, 2).cage.creases.empty());
+}
+
+// The twelve-vertex icosahedron, unit circumradius.
+FaceVertexMesh icosahedron() {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> points = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                              {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  for (Vec3& p : points) p.normalize();
+  const FaceList faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                          {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                          {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  return make_mesh(points, faces);
+}
+
+// The Loop limit of an icosahedron is not a sphere (its radius varies by about 1%), so the radius
+// spread of the level-k vertices does not shrink to zero: it converges to the limit's. What
+// converges is the mesh to its limit: level-k vertices approach their limit points by about 4x
+// per level.
+TEST(Subdivision, LoopOnAnIcosahedronConvergesToItsNearlySphericalLimit) {
+  const auto spread_of = [](const std::vector<Vec3>& points) {
+    double lo = 1e9;
+    double hi = 0.0;
+    for (const Vec3& p : points) {
+      lo = std::min(lo, p.norm());
+      hi = std::max(hi, p.norm());
+    }
+    return (hi - lo) / hi;
+  };
+  double previous_distance = 1.0;
+  for (int level = 1; level <= 5; ++level) {
+    const UniformRefinement refined = refine_uniform(cage_of(icosahedron(), SubdivisionScheme::loop), level);
+    EXPECT_EQ(refined.topology.euler, 2);
+    const VertexLimits limits = limit_at_vertices(refined.cage);
+    double distance = 0.0;
+    std::vector<Vec3> points;
+    for (std::size_t v = 0; v < refined.cage.mesh.vertex_count(); ++v) {
+      points.push_back(refined.cage.mesh.position(v));
+      distance = std::max(distance, (points.back() - limits.positions[v]).norm());
+    }
+    EXPECT_LT(distance, previous_distance / 3) << "level " << level;
+    previous_distance = distance;
+    EXPECT_LT(spread_of(limits.positions), 0.02);
+    EXPECT_LT(spread_of(points), 0.02);
+  }
+}
+
+TEST(Subdivision, LinearFaceVaryingValuesStayExact) {
+  // A 4 x 4 grid with UVs (i/4, j/4), one value per vertex (no seams): linear interpolation of
+  // a linear function on dyadic values is exact, so every refined UV is the exact bilinear one.
+  const int n = 4;
+  std::vector<Vec3> points;
+  FaceList faces;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) points.emplace_back(i, j, 0.1 * ((i * j) % 3));
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const auto id = [&](int a, int b) { return static_cast<std::uint32_t>(b * (n + 1) + a); };
+      faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  }
+  for (auto scheme : {SubdivisionScheme::catmull_clark, SubdivisionScheme::bilinear}) {
+    SubdivisionCage cage = cage_of(make_mesh(points, faces), scheme);
+    FaceVaryingData uv;
+    uv.values.resize(static_cast<Eigen::Index>(points.size()), 2);
+    for (std::size_t v = 0; v < points.size(); ++v) {
+      uv.values.row(static_cast<Eigen::Index>(v)) << points[v].x() / n, points[v].y() / n;
+    }
+    uv.indices = cage.mesh.face_indices();
+    cage.face_varying = uv;
+    cage.options.face_varying = FaceVaryingInterpolation::all;
+    // Colours as vertex data: here the positions themselves, so they refine like the positions.
+    cage.vertex_data = cage.mesh.positions();
+    const UniformRefinement refined = refine_uniform(cage, 3);
+    const FaceVaryingData& out = *refined.cage.face_varying;
+    ASSERT_EQ(out.indices.size(), refined.cage.mesh.face_indices().size());
+    if (scheme == SubdivisionScheme::bilinear) {
+      // Bilinear positions are the bilinear interpolation too: the UV is the position / n.
+      for (std::size_t c = 0; c < out.indices.size(); ++c) {
+        const Vec3 p = refined.cage.mesh.position(refined.cage.mesh.face_indices()[c]);
+        EXPECT_EQ(out.values(out.indices[c], 0), p.x() / n);
+        EXPECT_EQ(out.values(out.indices[c], 1), p.y() / n);
+      }
+    }
+    // The cage's corners keep their UVs exactly, and every UV lies on the 1/32 lattice.
+    for (Eigen::Index r = 0; r < out.values.rows(); ++r) {
+      for (int k = 0; k < 2; ++k) {
+        const double scaled = out.values(r, k) * 32.0;
+        EXPECT_EQ(scaled, std::round(scaled));
+      }
+    }
+    EXPECT_EQ(refined.cage.vertex_data, refined.cage.mesh.positions().cast<double>());
+  }
+}
+
+TEST(Subdivision, HolesLeaveBoundary) {
+  SubdivisionCage cage = cage_of(cube());
+  cage.holes = {1};
+  const UniformRefinement refined = refine_uniform(cage, 2);
+  EXPECT_EQ(refined.cage.holes.size(), 16u);
+  EXPECT_EQ(refined.topology.boundary_loops, 1);
+  EXPECT_EQ(refined.topology.euler, 1);
+  const LimitSurface surface(cage);
+  EXPECT_FALSE(surface.has_surface(1));
+  EXPECT_THROW(surface.evaluate(1, 0.5, 0.5), InvalidInput);
+}
+
+TEST(Subdivision, BadInputIsRefusedWithTheElement) {
+  EXPECT_NE(error_message<TopologyError>([] { refine_uniform(cage_of(testing::book()), 1); }).find("non-manifold"),
+            std::string::npos);
+  EXPECT_NE(error_message<TopologyError>([] { refine_uniform(cage_of(cube(), SubdivisionScheme::loop), 1); })
+                .find("face 0 has 4 corners"),
+            std::string::npos);
+  FaceList faces = testing::faces_of(cube());
+  std::reverse(faces[2].begin(), faces[2].end());
+  const FaceVertexMesh flipped = make_mesh(testing::points_of(cube()), faces);
+  EXPECT_NE(error_message<TopologyError>([&] { refine_uniform(cage_of(flipped), 1); }).find("same direction"),
+            std::string::npos);
+  SubdivisionCage cage = cage_of(cube());
+  cage.creases.push_back({0, 6, 1.0});
+  EXPECT_NE(error_message<InvalidInput>([&] { refine_uniform(cage, 1); }).find("not an edge"), std::string::npos);
+  cage.creases = {{0, 1, -1.0}};
+  EXPECT_NE(error_message<InvalidInput>([&] { refine_uniform(cage, 1); }).find("crease 0"), std::string::npos);
+  cage.creases = {{0, 1, std::nan("")}};
+  EXPECT_THROW(refine_uniform(cage, 1), InvalidInput);
+  cage.creases.clear();
+  cage.corners = {{8, 1.0}};
+  EXPECT_NE(error_message<InvalidInput>([&] { refine_uniform(cage, 1); }).find("corner 0"), std::string::npos);
+  cage.corners.clear();
+  cage.holes = {6};
+  EXPECT_NE(error_message<InvalidInput>([&] { refine_uniform(cage, 1); }).find("hole 0"), std::string::npos);
+  cage.holes.clear();
+  EXPECT_THROW(refine_uniform(cage, 11), InvalidInput);
+  EXPECT_THROW(refine_uniform(cage, -1), InvalidInput);
+  // 96 faces at 10 levels would be 96 * 4^10 > 10^8 faces: refused before any work.
+  const SubdivisionCage big = refine_uniform(cage, 2).cage;
+  EXPECT_NE(error_message<InvalidInput>([&] { refine_uniform(big, 10); }).find("more than"), std::string::npos);
+  EXPECT_THROW(LimitSurface(cage, 0), InvalidInput);
+  EXPECT_THROW(LimitSurface(cage, 11), InvalidInput);
+  cage.vertex_data = Eigen::MatrixXd::Zero(7, 2);
+  EXPECT_NE(error_message<InvalidInput>([&] { refine_uniform(cage, 1); }).find("7 rows"), std::string::npos);
+  cage.vertex_data.resize(0, 0);
+  FaceVaryingData uv;
+  uv.values = Eigen::MatrixXd::Zero(3, 2);
+  uv.indices.assign(24, 3);
+  cage.face_varying = uv;
+  EXPECT_NE(error_message<InvalidInput>([&] { refine_uniform(cage, 1); }).find("face-varying index 0"),
+            std::string::npos);
+  EXPECT_THROW(parse_scheme("doo-sabin"), InvalidInput);
+  const LimitSurface surface(cage_of(cube()));
+  EXPECT_THROW(surface.evaluate(6, 0.5, 0.5), InvalidInput);
+  EXPECT_THROW(surface.evaluate(0, 1.5, 0.5), InvalidInput);
+}
+
+// ---------------------------------------------------------------------------------------------
+// tessellation of the limit surface
+
+void expect_closed_sphere(const Tessellation& t) {
+  validate(t.mesh);
+  const TopologyReport report = analyze(welded_faces(t.mesh));
+  EXPECT_TRUE(report.manifold);
+  EXPECT_TRUE(report.closed);
+  EXPECT_EQ(report.euler, 2);
+  EXPECT_EQ(report.components, 1);
+}
+
+TEST(LimitTessellation, CatmullClarkMeetsTheToleranceWeldedAndClosed) {
+  // A cube with a pentagon-free mix: refined once first internally when there are non-quads.
+  const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const FaceList faces = {{0, 3, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  const LimitSurface surface(cage_of(make_mesh(points, faces)));
+  EXPECT_EQ(surface.face_count(), 4u * 5 + 3 * 2);
+  TessellationOptions options;
+  options.relative_tolerance = 1e-3;
+  options.tangents = true;
+  const Tessellation t = tessellate_limit(surface, options);
+  expect_closed_sphere(t);
+  EXPECT_LE(t.error_bound, t.tolerance);
+  EXPECT_LE(t.measured_error, t.error_bound);
+  EXPECT_GT(t.measured_error, 0.0);
+  // Normals point out of the (convex) surface.
+  const Vec3 centre(0.5, 0.5, 0.5);
+  for (std::size_t v = 0; v < t.mesh.vertex_count(); ++v) {
+    EXPECT_GT(t.mesh.normals[v].dot(t.mesh.positions[v] - centre), 0.0);
+  }
+  // Finer tolerance, more triangles, smaller error.
+  options.relative_tolerance = 1e-4;
+  const Tessellation finer = tessellate_limit(surface, options);
+  EXPECT_GT(finer.mesh.triangle_count(), t.mesh.triangle_count());
+  EXPECT_LE(finer.measured_error, finer.tolerance);
+}
+
+TEST(LimitTessellation, LoopAndBilinearInSegmentsMode) {
+  TessellationOptions options;
+  options.segments = 4;
+  const Tessellation loop = tessellate_limit(LimitSurface(cage_of(icosahedron(), SubdivisionScheme::loop)), options);
+  expect_closed_sphere(loop);
+  // A triangle as a quad with a collapsed side: 2 N^2 triangles, N of them degenerate and dropped.
+  EXPECT_EQ(loop.mesh.triangle_count(), 20u * (2 * 16 - 4));
+  EXPECT_TRUE(std::isinf(loop.error_bound));
+  EXPECT_GT(loop.measured_error, 0.0);
+  TessellationOptions tolerance;
+  tolerance.tolerance = 1e-3;
+  EXPECT_THROW(tessellate_limit(LimitSurface(cage_of(icosahedron(), SubdivisionScheme::loop)), tolerance),
+               InvalidInput);
+  // The bilinear limit of a cube is the cube: exact at any rate.
+  const Tessellation box = tessellate_limit(LimitSurface(cage_of(cube(), SubdivisionScheme::bilinear)), options);
+  expect_closed_sphere(box);
+  EXPECT_EQ(box.error_bound, 0.0);
+  EXPECT_LT(box.measured_error, 1e-15);
+}
+
+}  // namespace
+}  // namespace patchwork
