@@ -292,6 +292,33 @@ std::vector<std::uint32_t> LimitSurface::patch_faces() const {
   return impl_->bezier_face;
 }
 
+double isolation_deviation(const LimitSurface& surface) {
+  const int level = surface.isolation_level();
+  if (level >= 10 || surface.base().options.scheme == SubdivisionScheme::bilinear) return 0.0;
+  const LimitSurface deeper(surface.base(), level + 1);
+  const bool triangles = surface.base().options.scheme == SubdivisionScheme::loop;
+  // End caps sit in the corners of the faces, 2^-level wide: sample 4 x 4 cell centres in the
+  // corner squares of every size 2^-k, k = 0 .. level + 1, at each corner.
+  double deviation = 0.0;
+  for (std::size_t f = 0; f < surface.face_count(); ++f) {
+    if (!surface.has_surface(f)) continue;
+    for (int k = 0; k <= level + 1; ++k) {
+      const double size = std::ldexp(1.0, -k);
+      for (int i = 0; i < 4; ++i) {
+        for (int j = 0; j < 4; ++j) {
+          const double a = (i + 0.5) / 4 * size;
+          const double b = (j + 0.5) / 4 * size;
+          for (const auto& [u, v] : {std::pair{a, b}, std::pair{1 - a, b}, std::pair{a, 1 - b}, std::pair{1 - a, 1 - b}}) {
+            if (triangles && u + v > 1.0) continue;
+            deviation = std::max(deviation, (surface.position(f, u, v) - deeper.position(f, u, v)).norm());
+          }
+        }
+      }
+    }
+  }
+  return deviation;
+}
+
 PatchSet to_patch_set(const LimitSurface& surface) { return PatchSet(surface.bezier_patches()); }
 
 }  // namespace patchwork

@@ -12,6 +12,7 @@
 #include "tools/curve_demo.h"
 #include "tools/info_command.h"
 #include "tools/patches_command.h"
+#include "tools/subdivide_command.h"
 #include "tools/tessellate_command.h"
 
 int main(int argc, char** argv) {
@@ -59,6 +60,25 @@ int main(int argc, char** argv) {
                          "Split vertices where normals differ by more than this (degrees)");
   tessellate->add_flag("--json", tess.json, "Print the summary as JSON");
 
+  patchwork::tools::SubdivideArguments sub;
+  CLI::App* subdivide = app.add_subcommand("subdivide", "Subdivision surfaces (OpenSubdiv): refine a mesh, or tessellate its limit");
+  subdivide->add_option("input", sub.input, "Cage mesh (.obj, .off, .ply, .glb, .gltf)")->required();
+  subdivide->add_option("-o,--output", sub.output, "Output .obj, .off, .ply, .glb or .gltf")->required();
+  subdivide->add_option("--scheme", sub.scheme, "catmull-clark, loop or bilinear");
+  subdivide->add_option("--levels", sub.levels, "Uniform refinement levels (0..10)");
+  subdivide->add_option("--boundary", sub.boundary, "Boundary interpolation: none, edges, edges-and-corners");
+  subdivide->add_option("--sharp-angle", sub.sharp_angle_degrees,
+                        "Edges whose faces meet at more than this angle (degrees) stay infinitely sharp");
+  subdivide->add_flag("--limit", sub.limit, "Write the limit surface, tessellated");
+  auto* sub_tolerance = subdivide->add_option("--tolerance", sub.tolerance, "With --limit: absolute tolerance");
+  auto* sub_relative = subdivide->add_option("--relative-tolerance", sub.relative_tolerance,
+                                             "With --limit: tolerance relative to the bounding-box diagonal");
+  auto* sub_segments = subdivide->add_option("--segments", sub.segments, "With --limit: uniform N x N per face");
+  sub_tolerance->excludes(sub_relative, sub_segments);
+  sub_relative->excludes(sub_segments);
+  subdivide->add_option("--isolation", sub.isolation_level, "With --limit: adaptive isolation level (1..10)");
+  subdivide->add_flag("--json", sub.json, "Print the summary as JSON");
+
   std::string convert_input;
   std::string convert_output;
   CLI::App* convert = app.add_subcommand("convert", "Between mesh files (OBJ, OFF, PLY) and glTF (.glb, .gltf)");
@@ -89,6 +109,7 @@ int main(int argc, char** argv) {
       }
     }
     if (convert->parsed()) patchwork::tools::run_convert(convert_input, convert_output);
+    if (subdivide->parsed()) patchwork::tools::run_subdivide(std::cout, sub);
     if (tessellate->parsed()) {
       if (!tess.tolerance && !tess.relative_tolerance && !tess.segments && tess.camera.empty()) {
         std::cerr << "patchwork tessellate: give one of --tolerance, --relative-tolerance, --segments, --camera\n";

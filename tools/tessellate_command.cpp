@@ -14,16 +14,10 @@
 #include "io/gltf.h"
 #include "io/mesh_file.h"
 #include "surfaces/tessellator.h"
+#include "tools/output_files.h"
 
 namespace patchwork::tools {
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
 
 double parse_number(const std::string& key, const std::string& text) {
   std::size_t used = 0;
@@ -100,12 +94,8 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   // Everything is checked before anything is read or written.
-  const std::string extension = lower_extension(arguments.output);
-  const bool gltf = extension == ".glb" || extension == ".gltf";
-  if (!gltf && extension != ".obj" && extension != ".off" && extension != ".ply") {
-    throw InvalidInput(detail::message("tessellate: output ", arguments.output,
-                                       " must end in .glb, .gltf, .obj, .off or .ply"));
-  }
+  check_mesh_output("tessellate", arguments.output);
+  const bool gltf = is_gltf(arguments.output);
   TessellationOptions options;
   options.tolerance = arguments.tolerance;
   options.relative_tolerance = arguments.relative_tolerance;

@@ -264,6 +264,22 @@ TEST(LimitSurface, RegularPatchesJoinC2AsAPatchSet) {
   EXPECT_EQ(r.min_ck, 2);
 }
 
+// End caps approximate the limit near extraordinary vertices: deeper isolation moves the surface
+// less and less (about 2.4x per level at the cube's valence-3 corners); a regular torus has no
+// end cap and does not move at all.
+TEST(LimitSurface, EndCapsConvergeWithTheIsolationLevel) {
+  const SubdivisionCage cage = cage_of(cube());
+  double previous = 1.0;
+  for (int level = 2; level <= 5; ++level) {
+    const double deviation = isolation_deviation(LimitSurface(cage, level));
+    EXPECT_GT(deviation, 0.0);
+    EXPECT_LT(deviation, previous / 2) << "level " << level;
+    previous = deviation;
+  }
+  testing::Random random(5);
+  EXPECT_LT(isolation_deviation(LimitSurface(cage_of(torus_grid(4, 5, random).mesh()), 2)), 1e-14);
+}
+
 TEST(LimitSurface, InfinitelySharpCreasesKeepTheCubesEdgesStraight) {
   SubdivisionCage cage = cage_of(cube());
   const TopologyReport base = analyze(cage.mesh);

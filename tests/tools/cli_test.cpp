@@ -138,6 +138,48 @@ TEST(Cli, ConvertBetweenMeshFormatsAndGltfKeepsTheMesh) {
   EXPECT_EQ(lines(bad.err), 1);
 }
 
+TEST(Cli, SubdivideRefinesAMeshAndTessellatesItsLimit) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const std::string cube = quote(PATCHWORK_DATA_DIR "/cube.obj");
+  const fs::path refined = folder.path() / "refined.obj";
+  const CliRun run = patchwork(folder, "subdivide " + cube + " -o " + quote(refined.string()) + " --levels 2 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json summary = nlohmann::json::parse(run.out);
+  EXPECT_EQ(summary["faces"], 96);
+  EXPECT_EQ(summary["euler"], 2);
+  EXPECT_EQ(summary["genus"], 0);
+  EXPECT_EQ(analyze(read_mesh(refined)).faces, 96);
+
+  const fs::path limit = folder.path() / "limit.glb";
+  const CliRun tessellated =
+      patchwork(folder, "subdivide " + cube + " -o " + quote(limit.string()) + " --limit --relative-tolerance 1e-3 --json");
+  ASSERT_EQ(tessellated.exit_code, 0) << tessellated.err;
+  const nlohmann::json result = nlohmann::json::parse(tessellated.out);
+  EXPECT_EQ(result["euler"], 2);
+  EXPECT_EQ(result["boundary_loops"], 0);
+  EXPECT_LE(result["measured_error"].get<double>(), result["error_bound"].get<double>());
+  EXPECT_LE(result["error_bound"].get<double>(), result["tolerance"].get<double>());
+  EXPECT_GT(result["isolation_deviation"].get<double>(), 0.0);
+  if (validator_available()) {
+    EXPECT_TRUE(validates(limit));
+  }
+
+  // Loop needs triangles; a tolerance needs --limit; a non-manifold cage is refused: one line, no file.
+  const fs::path book = folder.path() / "book.obj";
+  std::ofstream(book) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+  const fs::path output = folder.path() / "out.glb";
+  const std::string o = " -o " + quote(output.string());
+  for (const std::string& arguments : {"subdivide " + cube + o + " --scheme loop", "subdivide " + cube + o + " --tolerance 0.1",
+                                       "subdivide " + cube + o + " --scheme doo-sabin",
+                                       "subdivide " + cube + o + " --levels 11",
+                                       "subdivide " + quote(book.string()) + o}) {
+    const CliRun bad = patchwork(folder, arguments);
+    EXPECT_EQ(bad.exit_code, 1) << arguments;
+    EXPECT_EQ(lines(bad.err), 1) << arguments << "\n" << bad.err;
+    EXPECT_FALSE(fs::exists(output)) << arguments;
+  }
+}
+
 TEST(Cli, InfoOnAPatchSetGivesItsAdjacency) {
   const testing::TemporaryDirectory folder("patchwork_cli_test");
   const CliRun run = patchwork(folder, "info " + teapot + " --json");

@@ -1,0 +1,25 @@
+#pragma once
+// What the commands share about output files: the extension that picks the format, and writing
+// a polygon mesh to any of them.
+
+#include <string>
+
+#include "meshes/face_vertex_mesh.h"
+
+namespace patchwork::tools {
+
+/// The extension of `path` in lower case, with its dot (".glb").
+std::string lower_extension(const std::string& path);
+
+/// Whether `path` ends in .glb or .gltf (any case).
+bool is_gltf(const std::string& path);
+
+/// \throws InvalidInput naming `command` unless `path` ends in .obj, .off, .ply, .glb or .gltf.
+void check_mesh_output(const std::string& command, const std::string& path);
+
+/// Writes a polygon mesh by extension: OBJ, OFF, PLY as they are; glTF with the polygons fanned
+/// into triangles (from each face's first corner: exact for convex faces) and angle-weighted
+/// vertex normals split at creases over 30 degrees (meshes/normals.h). Atomic.
+void write_polygon_mesh(const std::string& path, const FaceVertexMesh& mesh);
+
+}  // namespace patchwork::tools
