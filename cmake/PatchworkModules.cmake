@@ -60,6 +60,7 @@ function(patchwork_add_library name)
   get_property(deps GLOBAL PROPERTY PATCHWORK_MODULE_DEPENDS_${name})
   add_library(patchwork_${name} STATIC ${ARG_SOURCES})
   add_library(patchwork::${name} ALIAS patchwork_${name})
+  set_target_properties(patchwork_${name} PROPERTIES UNITY_BUILD ${PATCHWORK_UNITY_BUILD})
   target_include_directories(patchwork_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>)
   target_link_libraries(patchwork_${name} PUBLIC patchwork_build_flags PRIVATE patchwork_warnings
                         ${ARG_PRIVATE_LIBRARIES})

@@ -156,6 +156,12 @@ void isolate_roots(std::span<const double> p, std::span<const double> dp,
 
 }  // namespace
 
+double falling_factorial(int n, int k) {
+  double result = 1.0;
+  for (int j = 0; j < k; ++j) result *= n - j;
+  return result;
+}
+
 double binomial(int n, int k) {
   if (k < 0 || k > n) return 0.0;
   k = std::min(k, n - k);

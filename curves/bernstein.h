@@ -17,6 +17,9 @@ namespace patchwork {
 /// Binomial coefficient C(n, k) as a double (exact while it is below 2^53); 0 outside 0 <= k <= n.
 double binomial(int n, int k);
 
+/// The falling factorial n (n-1) ... (n-k+1) (1 for k = 0): the factor of a k-th derivative.
+double falling_factorial(int n, int k);
+
 /// B_i^n(t); 0 for i outside [0, n]. \throws InvalidInput if n < 0 or t is not finite.
 double bernstein(int n, int i, double t);
 

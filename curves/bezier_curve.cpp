@@ -42,13 +42,6 @@ void de_casteljau_steps(Point<Dim>* work, int n, int steps, double s) {
   }
 }
 
-// Falling factorial n (n-1) ... (n-k+1).
-double falling_factorial(int n, int k) {
-  double result = 1.0;
-  for (int j = 0; j < k; ++j) result *= n - j;
-  return result;
-}
-
 }  // namespace
 
 template <int Dim>

@@ -17,12 +17,6 @@ Point<Dim> forward_difference(const std::vector<Point<Dim>>& P, int i, int j) {
   return sum;
 }
 
-double falling_factorial(int n, int k) {
-  double result = 1.0;
-  for (int j = 0; j < k; ++j) result *= n - j;
-  return result;
-}
-
 // C^(j) at the end (at_end) or the start of the curve, from the control points.
 template <int Dim>
 Point<Dim> end_derivative(const BezierCurve<Dim>& curve, int j, bool at_end) {
@@ -33,7 +27,7 @@ Point<Dim> end_derivative(const BezierCurve<Dim>& curve, int j, bool at_end) {
 }
 
 template <int Dim>
-double max_norm(const BezierCurve<Dim>& curve) {
+double largest_control_point_norm(const BezierCurve<Dim>& curve) {
   double result = 0.0;
   for (const auto& p : curve.control_points()) result = std::max(result, p.norm());
   return result;
@@ -52,8 +46,8 @@ Continuity continuity(const BezierCurve<Dim>& first, const BezierCurve<Dim>& sec
   // second curve (a C^k continuation onto a much longer interval) inflate the tolerance of the
   // first curve's derivatives, whose 1/h1^j factor is then applied to the wrong size, and report
   // C^(k+1) for a generic join.
-  const double magnitude1 = max_norm(first);
-  const double magnitude2 = max_norm(second);
+  const double magnitude1 = largest_control_point_norm(first);
+  const double magnitude2 = largest_control_point_norm(second);
   const int n = first.degree();
   const int m = second.degree();
   const double h1 = first.b() - first.a();

@@ -169,7 +169,7 @@ tinygltf::Material default_material(bool double_sided) {
 }
 
 // The format named by the extension of `path`. \throws IoError for any other extension.
-GltfFormat format_of(const std::filesystem::path& path) {
+GltfFormat gltf_format_of(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (extension == ".glb") return GltfFormat::glb;
@@ -389,7 +389,7 @@ std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOpt
 }
 
 void write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options) {
-  const GltfFormat format = format_of(path);
+  const GltfFormat format = gltf_format_of(path);
   write_file_atomically(path, format_gltf(mesh, format, options));
 }
 

@@ -15,7 +15,7 @@ namespace {
 enum class MeshFormat { obj, off, ply };
 
 // The format named by the extension of `path`. \throws IoError for any other extension.
-MeshFormat format_of(const std::filesystem::path& path) {
+MeshFormat mesh_format_of(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -38,7 +38,7 @@ std::string_view without_plus(std::string_view token) {
 }  // namespace
 
 FaceVertexMesh read_mesh(const std::filesystem::path& path) {
-  switch (format_of(path)) {
+  switch (mesh_format_of(path)) {
     case MeshFormat::obj:
       return read_obj(path);
     case MeshFormat::off:
@@ -50,7 +50,7 @@ FaceVertexMesh read_mesh(const std::filesystem::path& path) {
 }
 
 void write_mesh(const std::filesystem::path& path, const FaceVertexMesh& mesh, PlyFormat ply_format) {
-  switch (format_of(path)) {
+  switch (mesh_format_of(path)) {
     case MeshFormat::obj:
       write_obj(path, mesh);
       return;

@@ -12,7 +12,7 @@
 namespace patchwork {
 namespace {
 
-constexpr std::uint32_t none = 0xffffffffu;
+constexpr std::uint32_t unset = 0xffffffffu;
 
 // The boundary loops of each component: closed walks that use every boundary edge once,
 // continuing at each vertex with the first unused boundary edge there (in edge order).
@@ -53,14 +53,14 @@ std::vector<Count> count_loops(const FaceVertexMesh& mesh, const detail::EdgeTab
       const std::uint32_t origin = table.vertices(edges[start])[0];
       std::uint32_t vertex = table.vertices(edges[start])[1];
       while (vertex != origin) {
-        std::uint32_t next = none;
+        std::uint32_t next = unset;
         for (std::uint32_t i = at_start[vertex]; i < at_start[vertex + 1]; ++i) {
           if (!used[at[i]]) {
             next = at[i];
             break;
           }
         }
-        if (next == none || next >= first[c + 1]) break;  // only on odd-degree boundary vertices (non-manifold)
+        if (next == unset || next >= first[c + 1]) break;  // only on odd-degree boundary vertices (non-manifold)
         used[next] = true;
         const auto ends = table.vertices(edges[next]);
         vertex = ends[0] == vertex ? ends[1] : ends[0];
@@ -113,10 +113,10 @@ std::vector<std::uint32_t> vertices_with_several_fans(const FaceVertexMesh& mesh
       if (table.twin(table.first_use(e)) == detail::EdgeTable::none) continue;  // one face
       for (std::uint32_t end : table.vertices(e)) {
         if (!general[end]) continue;
-        std::uint32_t first = none;
+        std::uint32_t first = unset;
         for (const detail::EdgeUse use : table.uses(e)) {
           detail::for_each_corner_at(mesh, use.face, end, [&](std::uint32_t c) {
-            if (first == none) {
+            if (first == unset) {
               first = c;
             } else {
               corners.unite(first, c);
@@ -125,12 +125,12 @@ std::vector<std::uint32_t> vertices_with_several_fans(const FaceVertexMesh& mesh
         }
       }
     }
-    std::vector<std::uint32_t> fan_root(mesh.vertex_count(), none);
+    std::vector<std::uint32_t> fan_root(mesh.vertex_count(), unset);
     for (std::uint32_t c = 0; c < index.size(); ++c) {
       const std::uint32_t v = index[c];
       if (!general[v]) continue;
       const std::uint32_t root = corners.find(c);
-      if (fan_root[v] == none) {
+      if (fan_root[v] == unset) {
         fan_root[v] = root;
       } else if (fan_root[v] != root && fans[v] < 2) {
         fans[v] = 2;
@@ -159,12 +159,12 @@ TopologyReport analyze(const FaceVertexMesh& mesh) {
 
   // Vertices per component and in all; isolated vertices. Nearly every vertex lies in one
   // component: first_component[v] holds it, and (v, c) pairs for any other are kept apart.
-  std::vector<std::uint32_t> first_component(mesh.vertex_count(), none);
+  std::vector<std::uint32_t> first_component(mesh.vertex_count(), unset);
   std::vector<std::uint64_t> more_components;  // v << 32 | c, sorted and unique below
   for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
     const std::uint32_t c = component[f];
     for (std::uint32_t v : mesh.face(f)) {
-      if (first_component[v] == none) {
+      if (first_component[v] == unset) {
         first_component[v] = c;
       } else if (first_component[v] != c) {
         more_components.push_back(static_cast<std::uint64_t>(v) << 32 | c);
@@ -176,7 +176,7 @@ TopologyReport analyze(const FaceVertexMesh& mesh) {
   std::sort(more_components.begin(), more_components.end());
   more_components.erase(std::unique(more_components.begin(), more_components.end()), more_components.end());
   for (std::uint32_t c : first_component) {
-    if (c == none) {
+    if (c == unset) {
       ++report.isolated_vertices;
     } else {
       ++report.vertices;
