@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/timing_reporter.h"
 #include "meshes/halfedge_mesh.h"
 #include "meshes/interop/cgal.h"
 #include "meshes/interop/openmesh.h"
@@ -230,56 +231,27 @@ BENCHMARK(cgal_build_and_topology)->Unit(benchmark::kMillisecond)->Iterations(3)
 BENCHMARK(patchwork_halfedge_only)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 BENCHMARK(patchwork_analyze_only)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
-// The console output, plus seconds per iteration of each benchmark for the ratios.
-class RatioReporter : public benchmark::ConsoleReporter {
- public:
-  // Colours only on a terminal (a custom reporter does not see --benchmark_color).
-  RatioReporter() : ConsoleReporter(isatty(fileno(stdout)) ? OO_Defaults : OO_Tabular) {}
-
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) {
-      if (run.run_type == Run::RT_Iteration && !run.error_occurred && run.iterations > 0) {
-        const auto iterations = static_cast<double>(run.iterations);
-        seconds_[run.run_name.function_name] = {run.real_accumulated_time / iterations,
-                                                run.cpu_accumulated_time / iterations};
-      }
-    }
-    ConsoleReporter::ReportRuns(runs);
+// CPU time is the fairer measure on a shared machine (each benchmark runs on one thread);
+// wall time is printed beside it.
+void print_ratios(const patchwork::bench::TimingReporter& timing, std::ostream& out) {
+  const auto* ours = timing.find("patchwork_halfedge_and_analyze");
+  if (ours == nullptr) return;
+  out << "\nTime per 1M-triangle build + topology relative to patchwork (above 1: patchwork is faster)\n"
+      << "  " << std::left << std::setw(30) << ""
+      << " cpu ratio  wall ratio   cpu seconds (other / patchwork)\n";
+  for (const char* other : {"openmesh_build_and_topology", "cgal_build_and_topology"}) {
+    const auto* it = timing.find(other);
+    if (it == nullptr) continue;
+    out << "  " << std::left << std::setw(30) << other << std::right << std::fixed << std::setprecision(3)
+        << std::setw(10) << it->cpu / ours->cpu << std::setw(12) << it->wall / ours->wall
+        << std::setw(10) << it->cpu << " / " << ours->cpu << "\n";
   }
-
-  // CPU time is the fairer measure on a shared machine (each benchmark runs on one thread);
-  // wall time is printed beside it.
-  void print_ratios(std::ostream& out) const {
-    const auto ours = seconds_.find("patchwork_halfedge_and_analyze");
-    if (ours == seconds_.end()) return;
-    out << "\nTime per 1M-triangle build + topology relative to patchwork (above 1: patchwork is faster)\n"
-        << "  " << std::left << std::setw(30) << ""
-        << " cpu ratio  wall ratio   cpu seconds (other / patchwork)\n";
-    for (const char* other : {"openmesh_build_and_topology", "cgal_build_and_topology"}) {
-      const auto it = seconds_.find(other);
-      if (it == seconds_.end()) continue;
-      out << "  " << std::left << std::setw(30) << other << std::right << std::fixed << std::setprecision(3)
-          << std::setw(10) << it->second.cpu / ours->second.cpu << std::setw(12) << it->second.wall / ours->second.wall
-          << std::setw(10) << it->second.cpu << " / " << ours->second.cpu << "\n";
-    }
-  }
-
- private:
-  struct Seconds {
-    double wall;
-    double cpu;
-  };
-  std::map<std::string, Seconds> seconds_;
-};
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  reporter.print_ratios(std::cout);
-  benchmark::Shutdown();
-  return 0;
+  return patchwork::bench::run_benchmarks(argc, argv, [](const patchwork::bench::TimingReporter& timing) {
+    print_ratios(timing, std::cout);
+  });
 }
