@@ -19,17 +19,7 @@ namespace osd = OpenSubdiv;
 
 namespace {
 
-// A point as OpenSubdiv's interpolation wants it.
-struct Point3 {
-  double x[3];
-  void Clear() { x[0] = x[1] = x[2] = 0.0; }
-  void AddWithWeight(const Point3& source, double weight) {
-    x[0] += weight * source.x[0];
-    x[1] += weight * source.x[1];
-    x[2] += weight * source.x[2];
-  }
-  Vec3 vec() const { return {x[0], x[1], x[2]}; }
-};
+using Point3 = detail::OsdPoint;
 
 std::vector<Point3> cage_points(const FaceVertexMesh& mesh) {
   std::vector<Point3> points(mesh.vertex_count());
@@ -243,6 +233,23 @@ std::size_t LimitSurface::patch_count() const noexcept {
   return impl_->table ? static_cast<std::size_t>(impl_->table->GetNumPatchesTotal()) : impl_->bezier.size();
 }
 int LimitSurface::isolation_level() const noexcept { return impl_->level; }
+
+std::vector<std::size_t> LimitSurface::patches_per_depth() const {
+  std::vector<std::size_t> counts(1, 0);
+  const auto count = [&](int depth) {
+    if (static_cast<std::size_t>(depth) >= counts.size()) counts.resize(static_cast<std::size_t>(depth) + 1, 0);
+    ++counts[static_cast<std::size_t>(depth)];
+  };
+  const Impl& impl = *impl_;
+  if (!impl.table) {
+    for (std::size_t p = 0; p < impl.bezier.size(); ++p) count(0);
+    return counts;
+  }
+  for (int a = 0; a < impl.table->GetNumPatchArrays(); ++a) {
+    for (int p = 0; p < impl.table->GetNumPatches(a); ++p) count(impl.table->GetPatchParam(a, p).GetDepth());
+  }
+  return counts;
+}
 
 LimitPoint LimitSurface::evaluate(std::size_t f, double u, double v) const {
   const Impl& impl = *impl_;

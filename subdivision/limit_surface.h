@@ -72,6 +72,9 @@ class LimitSurface {
   std::size_t patch_count() const noexcept;
   /// The isolation level used.
   int isolation_level() const noexcept;
+  /// How many patches each refinement depth holds (index = depth): where the adaptive
+  /// refinement went. A face with no irregular feature is one patch of depth 0.
+  std::vector<std::size_t> patches_per_depth() const;
 
   /// The surface point of base face f at (u, v).
   /// \throws InvalidInput if f is out of range or a hole, or (u, v) is outside the face's domain.

@@ -7,6 +7,7 @@
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyRefiner.h>
 
+#include "core/types.h"
 #include "subdivision/cage.h"
 
 namespace patchwork::detail {
@@ -32,6 +33,18 @@ struct PrimvarRows {
   double* base;
   int size;
   PrimvarRow operator[](int index) const { return {base + static_cast<std::ptrdiff_t>(index) * size, size}; }
+};
+
+/// A point as OpenSubdiv's interpolation and stencils want it.
+struct OsdPoint {
+  double x[3];
+  void Clear() { x[0] = x[1] = x[2] = 0.0; }
+  void AddWithWeight(const OsdPoint& source, double weight) {
+    x[0] += weight * source.x[0];
+    x[1] += weight * source.x[1];
+    x[2] += weight * source.x[2];
+  }
+  Vec3 vec() const { return {x[0], x[1], x[2]}; }
 };
 
 using PrimvarRefiner = OpenSubdiv::Far::PrimvarRefinerReal<double>;

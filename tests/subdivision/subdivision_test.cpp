@@ -264,6 +264,28 @@ TEST(LimitSurface, RegularPatchesJoinC2AsAPatchSet) {
   EXPECT_EQ(r.min_ck, 2);
 }
 
+// Feature-adaptive refinement: a face whose four corners are regular stays one patch; each of the
+// cube's faces has four valence-3 corners, so every level keeps 3 regular children of each of the
+// 4 irregular ones (12 patches) and the last level adds the 4 end caps: 12 (L - 1) + 4 per face,
+// none at depth 0 or 1.
+TEST(LimitSurface, AdaptiveRefinementIsolatesOnlyTheExtraordinaryVertices) {
+  for (int level = 2; level <= 5; ++level) {
+    const LimitSurface surface(cage_of(cube()), level);
+    std::vector<std::size_t> expected(static_cast<std::size_t>(level) + 1, 6 * 12);
+    expected[0] = expected[1] = 0;
+    expected.back() += 6 * 4;
+    EXPECT_EQ(surface.patches_per_depth(), expected) << "level " << level;
+    EXPECT_EQ(surface.patch_count(), static_cast<std::size_t>(6 * (12 * (level - 1) + 4)));
+  }
+  testing::Random random(2);
+  const LimitSurface regular(cage_of(torus_grid(4, 5, random).mesh()), 6);
+  EXPECT_EQ(regular.patches_per_depth(), std::vector<std::size_t>{20});
+  // An infinitely sharp crease is a boundary of regular patches, not a feature to isolate.
+  SubdivisionCage creased = cage_of(torus_grid(4, 5, random).mesh());
+  creased.creases.push_back({0, 1, std::numeric_limits<double>::infinity()});
+  EXPECT_EQ(LimitSurface(creased, 6).patches_per_depth().size(), 7u);  // its ends are irregular
+}
+
 // End caps approximate the limit near extraordinary vertices: deeper isolation moves the surface
 // less and less (about 2.4x per level at the cube's valence-3 corners); a regular torus has no
 // end cap and does not move at all.
