@@ -12,16 +12,17 @@
 //
 //   patchwork_refine     the whole refine_uniform(cage, level) call, which is what a user gets:
 //                        validate_cage, the OpenSubdiv topology refinement (full topology in the
-//                        last level), positions level by level, the level-k FaceVertexMesh and
-//                        tags, the TopologyReport of the result (analyze), and freeing it all
+//                        last level only when the cage has tags), positions level by level, the
+//                        level-k FaceVertexMesh and tags, the TopologyReport of the result
+//                        (analyze() of the cage and refined_topology(): the closed forms), and
+//                        freeing it all
 //   openmesh_subdivide   attach + subdivide(level) + detach of a Subdivider on a fresh copy of
 //                        the cage as an OpenMesh mesh, and freeing the refined mesh. The copy is
 //                        made with the timer paused: OpenMesh refines in place, refine_uniform
 //                        leaves its input alone and returns a new mesh, so each side is timed
 //                        from "cage in memory" to "refined mesh in memory, then freed"
-//   patchwork_report_only  the last step of refine_uniform alone, analyze(surface_faces(result))
-//                        on the level-k result: the part of patchwork_refine that OpenMesh does
-//                        not do (it returns no report)
+//   patchwork_report_only  what a report by analyze() of the level-k result would cost (refine_uniform
+//                        derives it from the cage's instead): the part OpenMesh does not do
 //   openmesh_end_to_end  excludes nothing on the OpenMesh side either: FaceVertexMesh cage in,
 //                        FaceVertexMesh out, as refine_uniform takes and returns it. to_openmesh
 //                        (plus TriMesh::assign for Loop) + subdivide + reading the result back
@@ -365,9 +366,9 @@ void print_ratios(const patchwork::bench::TimingReporter& timing, std::ostream& 
   if (timing.empty()) return;
   out << "\nfaces/s(patchwork_refine) / faces/s(OpenMesh) = time(OpenMesh) / time(patchwork_refine); above 1: "
          "patchwork is faster\n"
-      << "  without report: time(patchwork_refine) - time(patchwork_report_only), from two runs\n\n"
+      << "\n"
       << "  scheme         level   output faces   patchwork faces/s   OpenMesh faces/s"
-      << "   vs subdivide cpu  wall   vs end-to-end cpu  wall   without report vs subdivide cpu  wall\n";
+      << "   vs subdivide cpu  wall   vs end-to-end cpu  wall\n";
   for (const SubdivisionScheme scheme : {SubdivisionScheme::catmull_clark, SubdivisionScheme::loop}) {
     for (const int level : levels) {
       const patchwork::bench::TimingReporter::Seconds* ours = timing.find(benchmark_name(scheme, "patchwork_refine", level));
@@ -383,10 +384,6 @@ void print_ratios(const patchwork::bench::TimingReporter& timing, std::ostream& 
         out << std::setw(20) << end_to_end->cpu / ours->cpu << std::setw(6) << end_to_end->wall / ours->wall;
       } else {
         out << std::setw(26) << "-";
-      }
-      if (const patchwork::bench::TimingReporter::Seconds* report = timing.find(benchmark_name(scheme, "patchwork_report_only", level))) {
-        out << std::setw(33) << theirs->cpu / (ours->cpu - report->cpu) << std::setw(6)
-            << theirs->wall / (ours->wall - report->wall);
       }
       out << "\n";
     }

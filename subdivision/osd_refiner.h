@@ -47,6 +47,23 @@ struct OsdPoint {
   Vec3 vec() const { return {x[0], x[1], x[2]}; }
 };
 
+/// Rows of a compile-time width (the positions: 3), unrolled.
+template <int Width>
+struct FixedRow {
+  double* values;
+  void Clear() {
+    for (int k = 0; k < Width; ++k) values[k] = 0.0;
+  }
+  void AddWithWeight(const FixedRow& source, double weight) {
+    for (int k = 0; k < Width; ++k) values[k] += weight * source.values[k];
+  }
+};
+template <int Width>
+struct FixedRows {
+  double* base;
+  FixedRow<Width> operator[](int index) const { return {base + static_cast<std::ptrdiff_t>(index) * Width}; }
+};
+
 using PrimvarRefiner = OpenSubdiv::Far::PrimvarRefinerReal<double>;
 
 }  // namespace patchwork::detail
