@@ -11,17 +11,11 @@ if(NOT TARGET Eigen3::Eigen)
   patchwork_missing("Eigen 3.4" libeigen3-dev)
 endif()
 
-# OpenSubdiv: Debian 12's CMake config names static libraries that are not installed, so the
-# header and the shared osdCPU library are found by hand.
-find_path(PATCHWORK_OSD_INCLUDE opensubdiv/far/topologyRefiner.h)
-find_library(PATCHWORK_OSD_CPU osdCPU)
-if(NOT PATCHWORK_OSD_INCLUDE OR NOT PATCHWORK_OSD_CPU)
-  patchwork_missing("OpenSubdiv (opensubdiv/far/topologyRefiner.h, libosdCPU)" libosd-dev)
-endif()
+# OpenSubdiv, found by hand (Debian 12's CMake config for it is broken); the installed package
+# config repeats this lookup with the same file.
+include(patchworkOpenSubdiv)
 if(NOT TARGET patchwork_opensubdiv)
-  add_library(patchwork_opensubdiv SHARED IMPORTED GLOBAL)
-  set_target_properties(patchwork_opensubdiv PROPERTIES IMPORTED_LOCATION "${PATCHWORK_OSD_CPU}"
-                        INTERFACE_INCLUDE_DIRECTORIES "${PATCHWORK_OSD_INCLUDE}")
+  patchwork_missing("OpenSubdiv (opensubdiv/far/topologyRefiner.h, libosdCPU)" libosd-dev)
 endif()
 
 # OpenMesh ships a config without a version file: no version in the request.

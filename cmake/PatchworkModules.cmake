@@ -25,6 +25,15 @@ if(PATCHWORK_SANITIZE)
   # code alike, or a matrix allocated on one side would be freed by the other allocator.
   target_compile_definitions(patchwork_build_flags INTERFACE EIGEN_MALLOC_ALREADY_ALIGNED=0)
 endif()
+if(PATCHWORK_FUZZ)
+  if(NOT PATCHWORK_SANITIZE OR NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "PATCHWORK_FUZZ needs PATCHWORK_SANITIZE=ON and clang (-DCMAKE_CXX_COMPILER=clang++)")
+  endif()
+  # The fuzzer's coverage instrumentation in every instrumented target; the fuzz programs add
+  # libFuzzer's main (tests/fuzz). Other programs of this build run as usual: the sanitizer
+  # runtimes they link answer the coverage hooks.
+  target_compile_options(patchwork_build_flags INTERFACE "$<${instrumented}:-fsanitize=fuzzer-no-link>")
+endif()
 
 set_property(GLOBAL PROPERTY PATCHWORK_MODULES "")
 
@@ -62,8 +71,11 @@ function(patchwork_add_library name)
   add_library(patchwork::${name} ALIAS patchwork_${name})
   set_target_properties(patchwork_${name} PROPERTIES UNITY_BUILD ${PATCHWORK_UNITY_BUILD})
   target_include_directories(patchwork_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>)
-  target_link_libraries(patchwork_${name} PUBLIC patchwork_build_flags PRIVATE patchwork_warnings
-                        ${ARG_PRIVATE_LIBRARIES})
+  # The helper targets hold this build's own flags and stay out of the installed package (a
+  # static library's private links are exported too); cmake/PatchworkInstall.cmake gives the
+  # installed targets the include directory and patchwork::build_flags instead.
+  target_link_libraries(patchwork_${name} PUBLIC $<BUILD_INTERFACE:patchwork_build_flags>
+                        PRIVATE $<BUILD_INTERFACE:patchwork_warnings> ${ARG_PRIVATE_LIBRARIES})
   foreach(dep IN LISTS deps)
     if(TARGET patchwork_${dep})
       target_link_libraries(patchwork_${name} PUBLIC patchwork::${dep})
