@@ -8,10 +8,13 @@
 //
 // Messages name the function and the element: "BezierCurve: control point 3 is not finite (nan, 0)".
 
+#include <charconv>
 #include <cstdint>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <type_traits>
 
 namespace patchwork {
 
@@ -61,12 +64,25 @@ class NumericalError : public std::runtime_error {
 
 namespace detail {
 
-/// Concatenates the arguments with operator<< into one message string.
+/// Writes one part of a message: doubles in the shortest form that reads back to the same value
+/// (1e-12, not 9.9999999999999998e-13), everything else with operator<<.
+template <class Part>
+void append_part(std::ostringstream& out, const Part& part) {
+  if constexpr (std::is_floating_point_v<Part>) {
+    char buffer[32];
+    const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, static_cast<double>(part));
+    out.write(buffer, error == std::errc() ? end - buffer : 0);
+  } else {
+    out << part;
+  }
+}
+
+/// Concatenates the arguments into one message string (see append_part).
 template <class... Parts>
 std::string message(const Parts&... parts) {
   std::ostringstream out;
   out.precision(17);
-  (out << ... << parts);
+  (append_part(out, parts), ...);
   return out.str();
 }
 

@@ -132,12 +132,14 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance) {
     return count;
   };
   const double smallest_u = M.uu > 0.0 ? std::sqrt(M.uu / e) : 1.0;
-  std::int64_t first = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(smallest_u)));
-  if (first > limit) {
+  // Compared as a double first: beyond 2^63 the conversion would be undefined behaviour.
+  if (!(std::floor(smallest_u) <= static_cast<double>(limit))) {
     throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " needs more than 2^20 segments in u"));
   }
+  const std::int64_t first = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(smallest_u)));
   // N_v cannot drop below what M_vv alone needs; once it is there, larger N_u only costs.
-  const auto floor_v = static_cast<std::int64_t>(std::max(1.0, std::ceil(std::sqrt(M.vv / e) - 1e-9)));
+  const auto floor_v = static_cast<std::int64_t>(
+      std::clamp(std::ceil(std::sqrt(M.vv / e) - 1e-9), 1.0, static_cast<double>(limit) + 1.0));
   GridSize best{-1, -1};
   // The product N_u N_v is searched over N_u from its minimum up to where it cannot improve.
   for (std::int64_t nu = first; nu <= limit; ++nu) {

@@ -76,7 +76,12 @@ class PointGrid {
 
  private:
   std::uint64_t key(const Vec3& p, int dx, int dy, int dz) const {
-    const auto c = [this](double x, int d) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x / cell_)) + d) & 0x1fffff; };
+    // The cell index is clamped before the conversion (a quotient beyond 2^63 would be undefined
+    // behaviour, found by fuzzing with a zero-size set): far-away cells only share a key.
+    const auto c = [this](double x, int d) {
+      const double q = std::clamp(std::floor(x / cell_), -0x1p52, 0x1p52);
+      return static_cast<std::uint64_t>(static_cast<std::int64_t>(q) + d) & 0x1fffff;
+    };
     return c(p.x(), dx) | (c(p.y(), dy) << 21) | (c(p.z(), dz) << 42);
   }
   double cell_;

@@ -163,7 +163,14 @@ class Tessellator {
         plan.tolerance = options_.pixel_tolerance * std::max(nearest_depth(patch, camera), near_depth) / focal;
         plan.culled = outside_frustum(patch, camera) || back_facing(patch, camera.eye);
       }
-      const GridSize grid = grid_for_tolerance(plan.bounds, plan.tolerance);
+      GridSize grid{};
+      try {
+        grid = grid_for_tolerance(plan.bounds, plan.tolerance);
+      } catch (const InvalidInput&) {
+        throw InvalidInput(detail::message("tessellate: piece ", p, " would need more than 2^20 segments per side at "
+                                           "tolerance ", plan.tolerance, " (over 10^12 triangles; the limit is ",
+                                           options_.max_triangles, ")"));
+      }
       // A curved patch keeps two segments per direction at any tolerance: with one, a tube of
       // two patches (the teapot's handle) would flatten into a doubled ribbon.
       const bool flat = plan.bounds.uu == 0.0 && plan.bounds.uv == 0.0 && plan.bounds.vv == 0.0;
@@ -602,6 +609,9 @@ Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& 
 }
 
 SurfacePieces surface_pieces(const PatchSet& set) {
+  if (!(set.size() > 0.0)) {
+    throw InvalidInput("tessellate: every control point is the same point: there is no surface to tessellate");
+  }
   const std::vector<BezierPatch3>& patches = set.patches();
   SurfacePieces pieces;
   pieces.count = patches.size();

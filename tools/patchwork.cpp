@@ -59,6 +59,8 @@ int main(int argc, char** argv) {
   tessellate->add_option("--crease-angle", tess.crease_angle_degrees,
                          "Split vertices where normals differ by more than this (degrees)");
   tessellate->add_flag("--json", tess.json, "Print the summary as JSON");
+  tessellate->add_option("--max-triangles", tess.max_triangles, "Refuse to make more triangles than this")
+      ->check(CLI::Range(std::int64_t{1}, std::int64_t{2'000'000'000}));
 
   patchwork::tools::SubdivideArguments sub;
   CLI::App* subdivide = app.add_subcommand("subdivide", "Subdivision surfaces (OpenSubdiv): refine a mesh, or tessellate its limit");

@@ -9,6 +9,7 @@
 // measured_error, culled_patches. OBJ, OFF and PLY get the welded triangles (positions only);
 // glTF gets the render mesh (normals, UVs, tangents).
 
+#include <cstdint>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -30,6 +31,8 @@ struct TessellateArguments {
   bool tangents = false;
   double crease_angle_degrees = 1.0;
   bool json = false;
+  /// Refuse above this many triangles (the message gives the count needed).
+  std::int64_t max_triangles = 100'000'000;
 };
 
 /// Runs the command; the summary goes to `out`, progress for long runs to `progress`.

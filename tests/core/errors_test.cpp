@@ -21,8 +21,12 @@ TEST(Errors, FamilyDerivesFromStandardTypes) {
   EXPECT_STREQ(io.what(), "out.glb: disk full");
 }
 
-TEST(Errors, MessageJoinsPartsWithFullPrecision) {
-  EXPECT_EQ(detail::message("f: t = ", 0.1, ", n = ", 3), "f: t = 0.10000000000000001, n = 3");
+// Doubles print in the shortest form that reads back to the same value: exact, and readable.
+TEST(Errors, MessageJoinsPartsWithShortestRoundTripDoubles) {
+  EXPECT_EQ(detail::message("f: t = ", 0.1, ", n = ", 3), "f: t = 0.1, n = 3");
+  EXPECT_EQ(detail::message(1e-12, " ", 0.1 + 0.2, " ", -0.0, " ", 1.0f / 3), "1e-12 0.30000000000000004 -0 0.3333333432674408");
+  const double x = 2.0 / 3.0;
+  EXPECT_EQ(std::stod(detail::message(x)), x);
 }
 
 }  // namespace

@@ -126,7 +126,8 @@ rc::Gen<double> finite_double() {
 
 rc::Gen<BezierPatch3> any_patch() {
   return rc::gen::mapcat(rc::gen::pair(rc::gen::inRange(0, 7), rc::gen::inRange(0, 7)), [](std::pair<int, int> nm) {
-    const auto [n, m] = nm;
+    const int n = nm.first;
+    const int m = nm.second;
     const auto count = static_cast<std::size_t>((n + 1) * (m + 1));
     return rc::gen::map(rc::gen::container<std::vector<double>>(3 * count, finite_double()),
                         [n, m, count](const std::vector<double>& xyz) {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "surfaces/tessellator.h"
 #include "tests/surfaces/patch_fixtures.h"
 
 namespace patchwork {
@@ -184,6 +185,25 @@ TEST(PatchSetReport, PrintsTextAndJson) {
   EXPECT_EQ(json["closed"], false);
   EXPECT_EQ(json["shared"][0]["ck"], 1);
   EXPECT_EQ(json["loops"][0]["edges"].size(), 6u);
+}
+
+}  // namespace
+}  // namespace patchwork
+
+namespace patchwork {
+namespace {
+
+// Found by fuzzing (tests/fuzz/regressions/fuzz_tessellator): a set whose control points are all
+// one point has size 0, and its point grid divided coordinates by a cell of 1e-300 and converted
+// the quotient to an integer (undefined behaviour under -fsanitize=undefined).
+TEST(PatchSet, ASetOfOnePointIsAnalysedAndRefusedByTheTessellator) {
+  const BezierPatch3 point(1, 1, std::vector<Vec3>(4, Vec3(-2, -2, -2)));
+  const PatchSet set({point, point});
+  EXPECT_EQ(set.size(), 0.0);
+  EXPECT_EQ(set.collapsed_edges().size(), 8u);
+  TessellationOptions options;
+  options.segments = 2;
+  EXPECT_THROW(tessellate(set, options), InvalidInput);
 }
 
 }  // namespace

@@ -29,12 +29,7 @@ struct CliRun {
   std::string err;
 };
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::slurp;
 
 std::string quote(const std::string& s) { return "'" + s + "'"; }
 

@@ -1,0 +1,47 @@
+// libFuzzer target: small patch sets from arbitrary bytes (1 to 3 patches of degrees 1 to 3,
+// control points on a coarse lattice so that shared, collapsed and touching edges occur) through
+// the tessellator at a tolerance or a segment count from the bytes. The mesh must be valid, its
+// measured error within its bound and the bound within the tolerance.
+
+#include "meshes/render_mesh.h"
+#include "meshes/topology.h"
+#include "surfaces/tessellator.h"
+#include "tests/fuzz/fuzz_support.h"
+
+using namespace patchwork;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  fuzz::ByteReader bytes(data, size);
+  std::vector<BezierPatch3> patches;
+  const std::uint32_t count = 1 + bytes.below(3);
+  for (std::uint32_t p = 0; p < count; ++p) {
+    const int n = 1 + static_cast<int>(bytes.below(3));
+    const int m = 1 + static_cast<int>(bytes.below(3));
+    std::vector<Vec3> points;
+    for (int k = 0; k < (n + 1) * (m + 1); ++k) points.emplace_back(bytes.coordinate(), bytes.coordinate(), bytes.coordinate());
+    patches.emplace_back(n, m, std::move(points));
+  }
+  TessellationOptions options;
+  // Small meshes keep the executions fast (a tessellation with its measurement per input).
+  options.max_triangles = 20'000;
+  options.threads = 1;
+  const std::uint32_t mode = bytes.below(4);
+  if (mode == 0) {
+    options.segments = 1 + static_cast<int>(bytes.below(8));
+  } else {
+    options.relative_tolerance = 1.0 / (2.0 + bytes.below(60));
+  }
+  options.uv = static_cast<UvMode>(bytes.below(3));
+  options.tangents = bytes.below(2) == 1;
+  fuzz::expect_documented_errors_only([&] {
+    const PatchSet set(patches);
+    const Tessellation result = tessellate(set, options);
+    validate(result.mesh);
+    (void)analyze(welded_faces(result.mesh));
+    // The guarantee, up to rounding (1e-9 of the size).
+    const double slack = 1e-9 * std::max(1.0, set.size());
+    PATCHWORK_FUZZ_CHECK(result.measured_error <= result.error_bound + slack);
+    if (!options.segments) PATCHWORK_FUZZ_CHECK(result.error_bound <= result.tolerance + slack);
+  });
+  return 0;
+}

@@ -1,0 +1,181 @@
+// Every bad input we know of, fed to the command line as a user would: each must end with exit
+// code 1, one line on stderr that names the file and the problem, and no output file (a file
+// that was there before stays as it was). The table of inputs and answers is docs/robustness.md;
+// this test writes it (PATCHWORK_UPDATE_DOCS=1) or fails when the committed one differs, so the
+// document always shows what the program answers now.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/support/temporary_directory.h"
+
+namespace patchwork {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BadInput {
+  std::string group;
+  std::string what;
+  /// A file to create first (empty name: none), and its bytes.
+  std::string file;
+  std::string bytes;
+  /// The arguments, run in the test's folder (so messages show relative names).
+  std::string arguments;
+};
+
+using testing::slurp;
+
+std::string repeat(const std::string& s, int n) {
+  std::string out;
+  for (int k = 0; k < n; ++k) out += s;
+  return out;
+}
+
+const std::string cube_obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                             "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+const std::string patch_header = "1\n3 3\n";
+std::string patch_points(int count) {
+  std::string out;
+  // A curved patch: z = i j mod 3 over the 4 x 4 net.
+  for (int k = 0; k < count; ++k) {
+    out += std::to_string(k % 4) + " " + std::to_string(k / 4) + " " + std::to_string((k % 4) * (k / 4) % 3) + "\n";
+  }
+  return out;
+}
+const std::string ply_header_binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                                      "property float y\nproperty float z\nelement face 1\n"
+                                      "property list uchar int vertex_indices\nend_header\n";
+
+std::vector<BadInput> bad_inputs() {
+  const std::string bpt = patch_header + patch_points(16);
+  return {
+      // --- readers
+      {"BPT", "missing file", "", "", "info missing.bpt"},
+      {"BPT", "empty file", "empty.bpt", "", "info empty.bpt"},
+      {"BPT", "a directory", "", "", "info folder.bpt"},
+      {"BPT", "truncated: 16 points announced, 3 given", "short.bpt", patch_header + patch_points(3), "info short.bpt"},
+      {"BPT", "patch count 2, one patch given", "count.bpt", "2\n3 3\n" + patch_points(16), "info count.bpt"},
+      {"BPT", "degree 100 (limit 64)", "degree.bpt", "1\n100 3\n" + patch_points(4), "info degree.bpt"},
+      {"BPT", "negative degree", "negative.bpt", "1\n-1 3\n", "info negative.bpt"},
+      {"BPT", "10^12 patches announced (nothing allocated first)", "huge.bpt", "1000000000000\n3 3\n" + patch_points(16),
+       "info huge.bpt"},
+      {"BPT", "NaN coordinate", "nan.bpt", patch_header + "nan 0 0\n" + patch_points(15), "info nan.bpt"},
+      {"BPT", "infinite coordinate", "inf.bpt", patch_header + "inf 0 0\n" + patch_points(15), "info inf.bpt"},
+      {"BPT", "a word for a number", "word.bpt", patch_header + "one 0 0\n" + patch_points(15), "info word.bpt"},
+      {"BPT", "binary garbage", "garbage.bpt", std::string("\x7f\x45\x4c\x46\x02\x01\x00\xff\xfe", 9), "info garbage.bpt"},
+      {"BPT", "all 16 control points equal (no surface)", "point.bpt", patch_header + repeat("1 1 1\n", 16),
+       "tessellate point.bpt -o out.glb --relative-tolerance 0.001"},
+      {"OBJ", "empty file", "empty.obj", "", "subdivide empty.obj -o out.obj"},
+      {"OBJ", "face index 9 of 8 vertices", "range.obj", cube_obj + "f 1 2 9\n", "info range.obj"},
+      {"OBJ", "face index 0 (OBJ counts from 1)", "zero.obj", cube_obj + "f 0 1 2\n", "info zero.obj"},
+      {"OBJ", "relative index before the first vertex", "relative.obj", "v 0 0 0\nf -1 -2 -3\n", "info relative.obj"},
+      {"OBJ", "face with two corners", "two.obj", cube_obj + "f 1 2\n", "info two.obj"},
+      {"OBJ", "NaN vertex", "nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "info nan.obj"},
+      {"OBJ", "non-UTF-8 bytes in a keyword", "latin1.obj", "v 0 0 0\n\xe9\xe8 1 2 3\n", "info latin1.obj"},
+      {"OFF", "wrong magic", "magic.off", "OF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "info magic.off"},
+      {"OFF", "10^12 faces announced", "huge.off", "OFF\n3 1000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+       "info huge.off"},
+      {"OFF", "truncated vertex list", "short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n", "info short.off"},
+      {"OFF", "negative index", "negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -2\n", "info negative.off"},
+      {"OFF", "repeated vertex in a face", "repeat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n",
+       "subdivide repeat.off -o out.obj"},
+      {"PLY", "binary, data cut short", "short.ply", ply_header_binary + std::string(10, '\0'), "info short.ply"},
+      {"PLY", "binary, face index out of range", "range.ply",
+       ply_header_binary + std::string(36, '\0') + std::string("\x03\x00\x00\x00\x00\x01\x00\x00\x00\x07\x00\x00\x00", 13),
+       "info range.ply"},
+      {"PLY", "unknown format", "format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n", "info format.ply"},
+      {"PLY", "no end_header", "header.ply", "ply\nformat ascii 1.0\nelement vertex 1\n", "info header.ply"},
+      {"glTF", "not glTF at all", "garbage.glb", std::string("glTF\x02\x00\x00\x00\xff\xff", 10), "convert garbage.glb out.obj"},
+      {"glTF", "JSON that is not glTF", "empty.gltf", "{}", "convert empty.gltf out.obj"},
+      // --- geometry and options
+      {"mesh", "non-manifold edge (three faces) as a subdivision cage", "book.obj",
+       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n", "subdivide book.obj -o out.obj"},
+      {"mesh", "inconsistent orientation as a subdivision cage", "flipped.obj",
+       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 3 1 4\n", "subdivide flipped.obj -o out.obj"},
+      {"mesh", "quads for Loop subdivision", "cube.obj", cube_obj, "subdivide cube.obj -o out.obj --scheme loop"},
+      {"mesh", "11 subdivision levels", "cube.obj", cube_obj, "subdivide cube.obj -o out.obj --levels 11"},
+      {"tessellate", "tolerance 0", "patch.bpt", bpt, "tessellate patch.bpt -o out.glb --tolerance 0"},
+      {"tessellate", "negative tolerance", "patch.bpt", bpt, "tessellate patch.bpt -o out.glb --tolerance -1"},
+      {"tessellate", "NaN tolerance", "patch.bpt", bpt, "tessellate patch.bpt -o out.glb --tolerance nan"},
+      {"tessellate", "a tolerance that needs more triangles than the limit", "patch.bpt", bpt,
+       "tessellate patch.bpt -o out.glb --tolerance 1e-12"},
+      {"tessellate", "more triangles than --max-triangles", "patch.bpt", bpt,
+       "tessellate patch.bpt -o out.glb --relative-tolerance 1e-5 --max-triangles 1000"},
+      {"tessellate", "0 segments", "patch.bpt", bpt, "tessellate patch.bpt -o out.glb --segments 0"},
+      {"tessellate", "camera looking at itself", "patch.bpt", bpt,
+       "tessellate patch.bpt -o out.glb --camera eye=0,0,0 target=0,0,0 fov=40 width=10 height=10"},
+      // --- output
+      {"output", "unknown output extension", "patch.bpt", bpt, "tessellate patch.bpt -o out.stl --segments 2"},
+      {"output", "output folder does not exist", "patch.bpt", bpt, "tessellate patch.bpt -o no/such/out.glb --segments 2"},
+      {"output", "output is a directory", "patch.bpt", bpt, "tessellate patch.bpt -o folder.glb --segments 2"},
+  };
+}
+
+std::string markdown_cell(std::string text) {
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  std::string out;
+  for (char c : text) {
+    if (c == '|') {
+      out += "\\|";
+    } else if (c == '\n') {
+      out += "<br>";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+TEST(Robustness, EveryBadInputGetsOneLineExitOneAndNoFile) {
+  std::ostringstream table;
+  table << "# Robustness: every bad input tried, and what patchwork answers\n\n"
+        << "Written by `tests/tools/robustness_test.cpp` (`PATCHWORK_UPDATE_DOCS=1` rewrites it; the test fails\n"
+        << "when this file differs from what the program answers). Each row runs the `patchwork` command\n"
+        << "line in a fresh folder. Every answer is exit code 1 with this one line on stderr, and no\n"
+        << "output file: `out.*` does not exist afterwards, and a `keep.glb` written before is unchanged.\n"
+        << "The fuzzing of the same readers is in [fuzzing](#fuzzing) below.\n\n"
+        << "| input | what is wrong | command | answer |\n|---|---|---|---|\n";
+  for (const BadInput& bad : bad_inputs()) {
+    const testing::TemporaryDirectory folder("patchwork_robustness");
+    if (!bad.file.empty()) std::ofstream(folder.path() / bad.file, std::ios::binary) << bad.bytes;
+    fs::create_directory(folder.path() / "folder.bpt");
+    fs::create_directory(folder.path() / "folder.glb");
+    std::ofstream(folder.path() / "keep.glb", std::ios::binary) << "previous contents";
+    const std::string command = "cd '" + folder.path().string() + "' && '" PATCHWORK_CLI "' " + bad.arguments +
+                                " > stdout.txt 2> stderr.txt";
+    const int status = std::system(command.c_str());
+    const int exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const std::string err = slurp(folder.path() / "stderr.txt");
+    EXPECT_EQ(exit_code, 1) << bad.arguments << "\n" << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << bad.arguments << "\n" << err;
+    EXPECT_EQ(err.rfind("patchwork: ", 0), 0u) << err;
+    EXPECT_FALSE(fs::exists(folder.path() / "out.glb") || fs::exists(folder.path() / "out.obj")) << bad.arguments;
+    EXPECT_EQ(slurp(folder.path() / "keep.glb"), "previous contents");
+    // No temporary file of an atomic write is left behind.
+    for (const auto& entry : fs::directory_iterator(folder.path())) {
+      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << bad.arguments;
+    }
+    table << "| " << bad.group << " | " << markdown_cell(bad.what) << " | `patchwork " << bad.arguments << "` | "
+          << markdown_cell(err) << (exit_code == 1 ? "" : " (exit " + std::to_string(exit_code) + ")") << " |\n";
+  }
+  const fs::path document = fs::path(PATCHWORK_SOURCE_DIR) / "docs" / "robustness.md";
+  const std::string text = slurp(document);
+  const std::string marker = "\n## Fuzzing";
+  const std::string rest = text.find(marker) == std::string::npos ? "" : text.substr(text.find(marker));
+  const std::string expected = table.str() + rest;
+  if (std::getenv("PATCHWORK_UPDATE_DOCS") != nullptr) {
+    std::ofstream(document, std::ios::binary) << expected;
+  } else {
+    EXPECT_EQ(text, expected) << "docs/robustness.md is out of date: run this test with PATCHWORK_UPDATE_DOCS=1";
+  }
+}
+
+}  // namespace
+}  // namespace patchwork
