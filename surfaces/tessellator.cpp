@@ -608,7 +608,7 @@ Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& 
   return Tessellator(pieces, options).run();
 }
 
-SurfacePieces surface_pieces(const PatchSet& set) {
+SurfacePieces surface_pieces(const PatchSet& set, bool tight_diagonal) {
   if (!(set.size() > 0.0)) {
     throw InvalidInput("tessellate: every control point is the same point: there is no surface to tessellate");
   }
@@ -622,9 +622,9 @@ SurfacePieces surface_pieces(const PatchSet& set) {
   Eigen::AlignedBox3d box;
   for (std::size_t p = 0; p < patches.size(); ++p) {
     pieces.bounds[p] = second_derivative_bounds(patches[p], bound_pieces);
-    box.extend(bounding_box(patches[p], 1e-6 * set.size()));
+    if (tight_diagonal) box.extend(bounding_box(patches[p], 1e-6 * set.size()));
   }
-  pieces.diagonal = box.diagonal().norm();
+  pieces.diagonal = tight_diagonal ? box.diagonal().norm() : set.size();
   pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
                                     bool with_tangents) {
     const BezierPatch3& patch = patches[p];
@@ -635,7 +635,7 @@ SurfacePieces surface_pieces(const PatchSet& set) {
 }
 
 Tessellation tessellate(const PatchSet& set, const TessellationOptions& options) {
-  return tessellate(surface_pieces(set), options);
+  return tessellate(surface_pieces(set, options.relative_tolerance.has_value()), options);
 }
 
 }  // namespace patchwork

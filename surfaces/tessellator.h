@@ -116,7 +116,8 @@ struct SurfacePieces {
   std::vector<EdgeRef> collapsed;
   /// Bounds on the second derivatives of each piece over [0,1]^2 (the guarantee rests on them).
   std::vector<SecondDerivativeBounds> bounds;
-  /// Diagonal of a box holding the surface (relative tolerances are fractions of it).
+  /// Diagonal of a box holding the surface (relative tolerances are fractions of it; the camera
+  /// mode's near limit is 10^-3 of it).
   double diagonal = 0.0;
   /// Piece p at every point of the grid us x vs (stored as evaluate_grid stores them).
   std::function<PatchGridSamples(std::uint32_t p, std::span<const double> us, std::span<const double> vs,
@@ -133,7 +134,9 @@ struct SurfacePieces {
 Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& options);
 
 /// The pieces of a patch set: its patches, shared and collapsed edges, bounds from 4 x 4 sub-nets.
-SurfacePieces surface_pieces(const PatchSet& set);
+/// `tight_diagonal`: the diagonal of the surface's tight box (relative tolerances need it; it
+/// costs a box search per patch); otherwise that of the control points' box, set.size().
+SurfacePieces surface_pieces(const PatchSet& set, bool tight_diagonal = true);
 
 /// Tessellates `set` (see the file comment).
 /// \throws InvalidInput if the options do not name exactly one of the modes, a tolerance is not

@@ -22,9 +22,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     patches.emplace_back(n, m, std::move(points));
   }
   TessellationOptions options;
-  // Small meshes keep the executions fast (a tessellation with its measurement per input): every
+  // Small meshes keep the executions fast (coverage instrumentation costs per loop step): every
   // path (stitching, welding, poles, touching points, refusals over the limit) shows at this size.
-  options.max_triangles = 4'000;
+  options.max_triangles = 1'000;
   options.threads = 1;
   const std::uint32_t mode = bytes.below(4);
   if (mode == 0) {
@@ -34,6 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   options.uv = static_cast<UvMode>(bytes.below(3));
   options.tangents = bytes.below(2) == 1;
+  // The sampled error costs ten evaluations per triangle: one input in four measures it.
+  options.measure = bytes.below(4) == 0;
   fuzz::expect_documented_errors_only([&] {
     const PatchSet set(patches);
     const Tessellation result = tessellate(set, options);
@@ -41,7 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)analyze(welded_faces(result.mesh));
     // The guarantee, up to rounding (1e-9 of the size).
     const double slack = 1e-9 * std::max(1.0, set.size());
-    PATCHWORK_FUZZ_CHECK(result.measured_error <= result.error_bound + slack);
+    if (options.measure) PATCHWORK_FUZZ_CHECK(result.measured_error <= result.error_bound + slack);
     if (!options.segments) PATCHWORK_FUZZ_CHECK(result.error_bound <= result.tolerance + slack);
   });
   return 0;
