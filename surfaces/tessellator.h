@@ -56,7 +56,7 @@ struct TessellationOptions {
   /// Exactly one of tolerance, relative_tolerance, segments and camera (with pixel_tolerance).
   /// Absolute tolerance, model units.
   std::optional<double> tolerance;
-  /// Tolerance as a fraction of the diagonal of the box of all control points.
+  /// Tolerance as a fraction of the diagonal of the surface's tight bounding box (8.2049 for the teapot).
   std::optional<double> relative_tolerance;
   /// Uniform N x N grid per patch (no error target; the bound is still computed).
   std::optional<int> segments;
