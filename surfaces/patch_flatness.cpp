@@ -1,6 +1,7 @@
 #include "surfaces/patch_flatness.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/errors.h"
@@ -27,22 +28,74 @@ SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch) {
   return {n * (n - 1.0) * uu, static_cast<double>(n) * m * uv, m * (m - 1.0) * vv};
 }
 
+namespace {
+
+// The control points of a degree-n Bezier segment over [t0, t1] are linear in the whole curve's:
+// Q_i = sum_k S(i, k) P_k, Q_i the blossom at (t0 x (n - i), t1 x i). Each column of S is that
+// blossom of the k-th unit control polygon, by de Casteljau steps at those parameters.
+Eigen::MatrixXd segment_matrix(int n, double t0, double t1) {
+  Eigen::MatrixXd S(n + 1, n + 1);
+  std::vector<double> work(static_cast<std::size_t>(n) + 1);
+  for (int k = 0; k <= n; ++k) {
+    for (int i = 0; i <= n; ++i) {
+      std::fill(work.begin(), work.end(), 0.0);
+      work[static_cast<std::size_t>(k)] = 1.0;
+      for (int step = 0; step < n; ++step) {
+        const double t = step < n - i ? t0 : t1;
+        for (int j = 0; j + step < n; ++j) work[j] = (1.0 - t) * work[j] + t * work[j + 1];
+      }
+      S(i, k) = work[0];
+    }
+  }
+  return S;
+}
+
+}  // namespace
+
 SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int pieces) {
   if (pieces < 1 || pieces > 64) {
     throw InvalidInput(detail::message("second_derivative_bounds: ", pieces, " pieces is not in [1, 64]"));
   }
   if (pieces == 1) return second_derivative_bounds(patch);
+  // The net of piece (a, b) is S_a P S_b^T per coordinate (segment matrices in u and v): the same
+  // points as de Casteljau sub-patches, without building a patch per piece.
+  const int n = patch.degree_u();
+  const int m = patch.degree_v();
+  std::array<Eigen::MatrixXd, 3> net;
+  for (int c = 0; c < 3; ++c) {
+    net[c].resize(n + 1, m + 1);
+    for (int j = 0; j <= m; ++j) {
+      for (int i = 0; i <= n; ++i) net[c](i, j) = patch.control_point(i, j)[c];
+    }
+  }
+  std::vector<Eigen::MatrixXd> su;
+  std::vector<Eigen::MatrixXd> sv;
+  for (int a = 0; a < pieces; ++a) {
+    su.push_back(segment_matrix(n, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces));
+    sv.push_back(segment_matrix(m, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces).transpose());
+  }
   SecondDerivativeBounds M{0.0, 0.0, 0.0};
   const double scale = static_cast<double>(pieces) * pieces;
+  std::array<Eigen::MatrixXd, 3> row;
+  std::array<Eigen::MatrixXd, 3> piece;
   for (int b = 0; b < pieces; ++b) {
-    // The row of pieces over [v_b, v_b+1] first, then each piece of it in u.
-    const BezierPatch3 row = subpatch(patch, 0.0, 1.0, static_cast<double>(b) / pieces, static_cast<double>(b + 1) / pieces);
+    for (int c = 0; c < 3; ++c) row[c].noalias() = net[c] * sv[static_cast<std::size_t>(b)];
     for (int a = 0; a < pieces; ++a) {
-      const BezierPatch3 piece = subpatch(row, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces, 0.0, 1.0);
-      const SecondDerivativeBounds m = second_derivative_bounds(piece);
-      M.uu = std::max(M.uu, scale * m.uu);
-      M.uv = std::max(M.uv, scale * m.uv);
-      M.vv = std::max(M.vv, scale * m.vv);
+      for (int c = 0; c < 3; ++c) piece[c].noalias() = su[static_cast<std::size_t>(a)] * row[c];
+      const auto at = [&](int i, int j) { return Vec3(piece[0](i, j), piece[1](i, j), piece[2](i, j)); };
+      double uu = 0.0;
+      double uv = 0.0;
+      double vv = 0.0;
+      for (int j = 0; j <= m; ++j) {
+        for (int i = 0; i <= n; ++i) {
+          if (i + 2 <= n) uu = std::max(uu, (at(i + 2, j) - 2.0 * at(i + 1, j) + at(i, j)).norm());
+          if (j + 2 <= m) vv = std::max(vv, (at(i, j + 2) - 2.0 * at(i, j + 1) + at(i, j)).norm());
+          if (i + 1 <= n && j + 1 <= m) uv = std::max(uv, (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j)).norm());
+        }
+      }
+      M.uu = std::max(M.uu, scale * n * (n - 1.0) * uu);
+      M.uv = std::max(M.uv, scale * static_cast<double>(n) * m * uv);
+      M.vv = std::max(M.vv, scale * m * (m - 1.0) * vv);
     }
   }
   return M;

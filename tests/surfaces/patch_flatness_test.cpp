@@ -106,3 +106,43 @@ RC_GTEST_PROP(TriangleFlatnessBound, BoundsTheSampledDistanceOnAnyTriangle, ()) 
 
 }  // namespace
 }  // namespace patchwork
+
+namespace patchwork {
+namespace {
+
+// The bounds from p x p pieces (segment matrices) equal those of the de Casteljau sub-patches,
+// and never exceed the whole net's: sub-net differences are convex combinations of the net's,
+// times 1/p^2 per order, which the factor p^2 undoes.
+RC_GTEST_PROP(PatchFlatness, PieceBoundsAreTheSubpatchesAndNoLargerThanTheNets, ()) {
+  const int n = *rc::gen::inRange(0, 6);
+  const int m = *rc::gen::inRange(0, 6);
+  const int pieces = *rc::gen::inRange(1, 6);
+  std::vector<Vec3> points;
+  for (int k = 0; k < (n + 1) * (m + 1); ++k) {
+    points.emplace_back(*rc::gen::inRange(-100, 101) / 10.0, *rc::gen::inRange(-100, 101) / 10.0,
+                        *rc::gen::inRange(-100, 101) / 10.0);
+  }
+  const BezierPatch3 patch(n, m, points);
+  const SecondDerivativeBounds fast = second_derivative_bounds(patch, pieces);
+  SecondDerivativeBounds reference{0, 0, 0};
+  for (int b = 0; b < pieces; ++b) {
+    for (int a = 0; a < pieces; ++a) {
+      const double p = pieces;
+      const SecondDerivativeBounds s =
+          second_derivative_bounds(subpatch(patch, a / p, (a + 1) / p, b / p, (b + 1) / p));
+      reference = {std::max(reference.uu, p * p * s.uu), std::max(reference.uv, p * p * s.uv),
+                   std::max(reference.vv, p * p * s.vv)};
+    }
+  }
+  const SecondDerivativeBounds whole = second_derivative_bounds(patch);
+  const double slack = 1e-9 * (1.0 + whole.uu + whole.uv + whole.vv);
+  RC_ASSERT(std::abs(fast.uu - reference.uu) <= slack);
+  RC_ASSERT(std::abs(fast.uv - reference.uv) <= slack);
+  RC_ASSERT(std::abs(fast.vv - reference.vv) <= slack);
+  RC_ASSERT(fast.uu <= whole.uu + slack);
+  RC_ASSERT(fast.uv <= whole.uv + slack);
+  RC_ASSERT(fast.vv <= whole.vv + slack);
+}
+
+}  // namespace
+}  // namespace patchwork
