@@ -151,8 +151,8 @@ class Meter {
     boxes_.resize(patches.size());
     const int g = options.grid_segments;
     parallel_for(patches.size(), options.threads, [&](std::size_t p) {
-      const PatchGridWeights weights = PatchGridWeights::uniform(patches[p].degree_u(), patches[p].degree_v(),
-                                                                 static_cast<std::size_t>(g), static_cast<std::size_t>(g));
+      const PatchGridWeights weights = PatchGridWeights::uniform(
+          patches[p].degree_u(), patches[p].degree_v(), static_cast<std::size_t>(g), static_cast<std::size_t>(g));
       grids_[p] = evaluate_grid(patches[p], weights).points;
       boxes_[p] = control_box(patches[p]);
     });
@@ -160,7 +160,8 @@ class Meter {
     for (std::size_t p = 0; p < patches.size(); ++p) {
       for (int b = 0; b < g; ++b) {
         for (int a = 0; a < g; ++a) {
-          const std::array<Vec2, 4> corners = {grid_uv(a, b), grid_uv(a + 1, b), grid_uv(a + 1, b + 1), grid_uv(a, b + 1)};
+          const std::array<Vec2, 4> corners = {grid_uv(a, b), grid_uv(a + 1, b), grid_uv(a + 1, b + 1),
+                                               grid_uv(a, b + 1)};
           for (const auto& half : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}}) {
             const std::array<Vec2, 3> uv = {corners[half[0]], corners[half[1]], corners[half[2]]};
             const Vec3 x0 = grid_point(p, uv[0]);
@@ -270,7 +271,9 @@ std::vector<std::size_t> largest(const std::vector<double>& values, std::size_t 
   std::vector<std::size_t> order(values.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   count = std::min(count, order.size());
-  const auto by_value = [&](std::size_t a, std::size_t b) { return values[a] > values[b] || (values[a] == values[b] && a < b); };
+  const auto by_value = [&](std::size_t a, std::size_t b) {
+    return values[a] > values[b] || (values[a] == values[b] && a < b);
+  };
   std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(), by_value);
   order.resize(count);
   return order;
@@ -280,7 +283,8 @@ void check_input(std::span<const BezierPatch3> patches, std::span<const Vec3> po
                  std::span<const std::uint32_t> indices, const HausdorffOptions& options) {
   if (patches.empty()) throw InvalidInput("hausdorff_distance: no patches");
   if (indices.empty() || indices.size() % 3 != 0) {
-    throw InvalidInput(detail::message("hausdorff_distance: ", indices.size(), " indices is not a positive multiple of 3"));
+    throw InvalidInput(
+        detail::message("hausdorff_distance: ", indices.size(), " indices is not a positive multiple of 3"));
   }
   for (std::size_t k = 0; k < indices.size(); ++k) {
     if (indices[k] >= positions.size()) {
@@ -289,12 +293,14 @@ void check_input(std::span<const BezierPatch3> patches, std::span<const Vec3> po
     }
   }
   for (std::size_t k = 0; k < positions.size(); ++k) {
-    if (!positions[k].allFinite()) throw InvalidInput(detail::message("hausdorff_distance: vertex ", k, " is not finite"));
+    if (!positions[k].allFinite())
+      throw InvalidInput(detail::message("hausdorff_distance: vertex ", k, " is not finite"));
   }
   if (options.grid_segments < 1 || options.grid_segments > 4096 || options.lattice < 1 || options.lattice > 64 ||
       options.refine < 0) {
-    throw InvalidInput(detail::message("hausdorff_distance: options out of range (grid_segments ", options.grid_segments,
-                                       ", lattice ", options.lattice, ", refine ", options.refine, ")"));
+    throw InvalidInput(detail::message("hausdorff_distance: options out of range (grid_segments ",
+                                       options.grid_segments, ", lattice ", options.lattice, ", refine ",
+                                       options.refine, ")"));
   }
 }
 
@@ -388,7 +394,8 @@ HausdorffDistance hausdorff_distance(std::span<const BezierPatch3> patches, std:
     for (int b = 0; b <= g; ++b) {
       for (int a = 0; a <= g; ++a) {
         const std::size_t k = p * grid_size + static_cast<std::size_t>(a + (g + 1) * b);
-        surface_samples[k] = {static_cast<std::uint32_t>(p), meter.grid_uv(a, b), meter.mesh_foot(meter.grid_point(p, a, b)), -1};
+        surface_samples[k] = {static_cast<std::uint32_t>(p), meter.grid_uv(a, b),
+                              meter.mesh_foot(meter.grid_point(p, a, b)), -1};
       }
     }
   });
@@ -461,7 +468,8 @@ HausdorffDistance hausdorff_distance(std::span<const BezierPatch3> patches, std:
       std::tie(best_st, best) = compass_maximum(best_st, best, step, step * 1e-6, value, clamp_barycentric);
       const Vec3 y = meter.mesh_point(t, best_st);
       const SurfaceFoot foot = meter.verified_surface_foot(y, meter.surface_foot(y));
-      witnesses[r] = {foot.distance, foot.point, foot.patch, foot.uv.x(), foot.uv.y(), y, static_cast<std::uint32_t>(t)};
+      witnesses[r] = {
+          foot.distance, foot.point, foot.patch, foot.uv.x(), foot.uv.y(), y, static_cast<std::uint32_t>(t)};
     });
     for (const HausdorffWitness& w : witnesses) {
       if (w.distance > result.mesh_to_surface.distance) result.mesh_to_surface = w;

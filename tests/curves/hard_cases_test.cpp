@@ -23,26 +23,16 @@ namespace {
 
 const std::vector<double> kIssueParameters = {0.0, 1e-12, 0.5, 1.0 - 1e-12, 1.0};
 
-// Bernstein coefficients (rounded to double) of prod_j (t - r_j), r_j given exactly.
-std::vector<double> bernstein_from_roots(const std::vector<mpq_class>& roots) {
-  return exact::nearest_doubles(exact::power_to_bernstein(exact::power_from_roots(roots)));
-}
-
 // (t - 1/2)^n. Its Bernstein coefficients are (-1)^(n-i) 2^-n, exact in double.
 std::vector<double> power_of_half(int n) {
-  return bernstein_from_roots(std::vector<mpq_class>(static_cast<std::size_t>(n), mpq_class(1, 2)));
+  return exact::bernstein_from_roots(std::vector<mpq_class>(static_cast<std::size_t>(n), mpq_class(1, 2)));
 }
 
 // (t - 3/4)^7 (t - 1), the classic ill-conditioned example of the compensated-evaluation papers.
 std::vector<double> seventh_power_times_linear() {
   std::vector<mpq_class> roots(7, mpq_class(3, 4));
   roots.emplace_back(1);
-  return bernstein_from_roots(roots);
-}
-
-// Power-basis coefficients of the same polynomial (exact conversion of the doubles, rounded).
-std::vector<double> power_coefficients(const std::vector<double>& c) {
-  return exact::nearest_doubles(exact::bernstein_to_power(exact::rationals(c)));
+  return exact::bernstein_from_roots(roots);
 }
 
 std::vector<double> random_around(std::mt19937_64& random, int n, double center, double spread) {
@@ -113,7 +103,7 @@ TEST(HardCases, PowerBasisIsFarWorseAtHighDegree) {
   const std::vector<double> near_root = {0.5 + 1e-12, 0.5 + 1e-6, 0.501, 0.49, 0.51, 0.55, 0.45};
   for (int n : {20, 25, 30, 40}) {
     const std::vector<double> c = power_of_half(n);
-    const std::vector<double> a = power_coefficients(c);
+    const std::vector<double> a = exact::power_coefficients(c);
     const std::vector<mpq_class> a_exact = exact::bernstein_to_power(exact::rationals(c));
     for (std::size_t j = 0; j < a.size(); ++j) ASSERT_EQ(mpq_class(a[j]), a_exact[j]) << "n=" << n << " j=" << j;
     mpq_class power_error = 0;
@@ -154,7 +144,7 @@ TEST(HardCases, PrintErrorTable) {
   for (const Row& row : rows) {
     const exact::EvaluationErrors e = exact::measure_errors(row.c, row.t);
     ASSERT_NE(e.exact, 0) << row.name;
-    const mpq_class power = abs(mpq_class(exact::horner(power_coefficients(row.c), row.t)) - e.exact);
+    const mpq_class power = abs(mpq_class(exact::horner(exact::power_coefficients(row.c), row.t)) - e.exact);
     std::printf("%-18s %-14.12g %-9.2e %-9.2e %-9.2e %-9.2e %-9.2e\n", row.name.c_str(), row.t,
                 std::abs(e.exact.get_d()), mpq_class(e.magnitude / abs(e.exact)).get_d(),
                 exact::in_ulps(e.plain, e.exact), exact::in_ulps(e.compensated, e.exact),

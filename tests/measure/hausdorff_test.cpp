@@ -26,7 +26,8 @@ template <class Point>
 Mesh grid_mesh(int nu, int nv, const Point& point) {
   Mesh mesh;
   for (int b = 0; b <= nv; ++b) {
-    for (int a = 0; a <= nu; ++a) mesh.positions.push_back(point(static_cast<double>(a) / nu, static_cast<double>(b) / nv));
+    for (int a = 0; a <= nu; ++a)
+      mesh.positions.push_back(point(static_cast<double>(a) / nu, static_cast<double>(b) / nv));
   }
   const auto id = [&](int a, int b) { return static_cast<std::uint32_t>(a + (nu + 1) * b); };
   for (int b = 0; b < nv; ++b) {
@@ -151,14 +152,16 @@ TEST(HausdorffDistance, FindsAtLeastWhatBruteForceFindsOnATeapotPatch) {
   constexpr int kSamples = 300;
   std::vector<Vec3> surface;
   for (int b = 0; b <= kSamples; ++b) {
-    for (int a = 0; a <= kSamples; ++a) surface.push_back(patch.evaluate(static_cast<double>(a) / kSamples, static_cast<double>(b) / kSamples));
+    for (int a = 0; a <= kSamples; ++a)
+      surface.push_back(patch.evaluate(static_cast<double>(a) / kSamples, static_cast<double>(b) / kSamples));
   }
   double surface_to_mesh = 0;
   for (const Vec3& x : surface) {
     double nearest = INFINITY;
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
-      nearest = std::min(nearest, point_triangle_distance(x, mesh.positions[mesh.indices[t]], mesh.positions[mesh.indices[t + 1]],
-                                                          mesh.positions[mesh.indices[t + 2]]));
+      nearest = std::min(
+          nearest, point_triangle_distance(x, mesh.positions[mesh.indices[t]], mesh.positions[mesh.indices[t + 1]],
+                                           mesh.positions[mesh.indices[t + 2]]));
     }
     surface_to_mesh = std::max(surface_to_mesh, nearest);
   }
@@ -175,7 +178,8 @@ TEST(HausdorffDistance, FindsAtLeastWhatBruteForceFindsOnATeapotPatch) {
         for (std::size_t k = 1; k < surface.size(); ++k) {
           if ((surface[k] - y).squaredNorm() < (surface[nearest] - y).squaredNorm()) nearest = k;
         }
-        const Vec2 start(static_cast<double>(nearest % (kSamples + 1)) / kSamples, static_cast<double>(nearest / (kSamples + 1)) / kSamples);
+        const Vec2 start(static_cast<double>(nearest % (kSamples + 1)) / kSamples,
+                         static_cast<double>(nearest / (kSamples + 1)) / kSamples);
         const Vec2 uv = closest_parameters(patch, y, start);
         mesh_to_surface = std::max(mesh_to_surface, (patch.evaluate(uv.x(), uv.y()) - y).norm());
       }

@@ -1,0 +1,61 @@
+#pragma once
+// Open CASCADE's BRepMesh_IncrementalMesh as a peer tessellator for the report.
+//
+// Each Bezier patch becomes one face: a Geom_BezierSurface whose pole (i+1, j+1) is P_ij, so
+// OCCT's (U, V) in [0,1]^2 is patchwork's (u, v) (surfaces/bezier_patch.h), trimmed by its
+// natural bounds (BRepBuilderAPI_MakeFace). The faces are put in one compound, not sewn: OCCT
+// meshes every face's boundary on its own, so neighbouring faces do not share vertices. Each
+// face's nodes are appended as they are (no welding); triangles are wound so that their normal
+// agrees with F_u x F_v of the patch (flipped for a reversed face).
+// No Open CASCADE header is included here: only report/occt_peer.cpp sees them.
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "report/peer_mesh.h"
+#include "surfaces/bezier_patch.h"
+
+namespace patchwork::performance {
+
+struct OcctRun {
+  /// The mesh of the last repeat.
+  PeerMesh mesh;
+  /// Median and minimum wall time of one BRepMesh_IncrementalMesh call, in seconds.
+  double seconds_median;
+  double seconds_min;
+  int repeats;
+};
+
+/// Open CASCADE's version string ("7.6.3").
+std::string occt_version();
+
+/// Meshes every patch as one face with BRepMesh_IncrementalMesh (absolute linear deflection in
+/// model units, angular deflection in radians, not in parallel), `repeats` times; each repeat
+/// meshes fresh faces built before its timer starts, and only the meshing call is timed.
+/// Returns the last mesh, in the patches' own coordinates.
+/// \throws InvalidInput unless both deflections are positive and finite, repeats >= 1 and every
+///         degree is within [1, 25] (Geom_BezierSurface's limits).
+/// \throws NumericalError if OCCT fails or leaves a face without a triangulation.
+OcctRun occt_tessellate(std::span<const BezierPatch3> patches, double linear_deflection, double angular_deflection,
+                        int repeats);
+
+namespace detail {
+
+/// One OCCT mesh with each vertex's parameters: the vertices of patch k are
+/// [first_vertex[k], first_vertex[k+1]), and uv[i] is vertex i's (u, v) on that patch.
+struct OcctParametricMesh {
+  PeerMesh mesh;
+  std::vector<Vec2> uv;
+  std::vector<std::size_t> first_vertex;
+};
+
+/// Meshes once as occt_tessellate does (untimed), keeping OCCT's (U, V) of every node.
+/// \throws as occt_tessellate.
+OcctParametricMesh occt_parametric_mesh(std::span<const BezierPatch3> patches, double linear_deflection,
+                                        double angular_deflection);
+
+}  // namespace detail
+}  // namespace patchwork::performance
