@@ -27,7 +27,11 @@ std::vector<TradeoffPoint> lower_envelope(std::span<const TradeoffPoint> points)
 
 std::optional<double> cost_at_error(std::span<const TradeoffPoint> points, double error) {
   const std::vector<TradeoffPoint> envelope = lower_envelope(points);
-  if (envelope.empty() || !(error >= envelope.front().error) || !(error <= envelope.back().error)) return std::nullopt;
+  double largest = 0.0;
+  for (const TradeoffPoint& p : points) largest = std::max(largest, std::isfinite(p.error) ? p.error : 0.0);
+  if (envelope.empty() || !(error >= envelope.front().error) || !(error <= largest)) return std::nullopt;
+  // Beyond the envelope's last point (up to the largest error run) its run is the cheapest.
+  if (error >= envelope.back().error) return envelope.back().cost;
   for (std::size_t k = 0; k + 1 < envelope.size(); ++k) {
     const TradeoffPoint& a = envelope[k];
     const TradeoffPoint& b = envelope[k + 1];

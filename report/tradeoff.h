@@ -12,7 +12,9 @@
 //    |            *          *  (dominated, ignored)
 //    +-------------------------> error
 //
-// Outside the envelope's error range there is no answer (no extrapolation).
+// Beyond the envelope's last point, up to the largest error of any run, the cost is that of the
+// last point (a cheaper run with a smaller error exists). Below the smallest error and above the
+// largest there is no answer (no extrapolation).
 
 #include <optional>
 #include <span>

@@ -37,5 +37,13 @@ TEST(Tradeoff, IgnoresDominatedRuns) {
   EXPECT_NEAR(*cost_at_error(points, 1e-2), std::sqrt(1000.0), 1e-9);
 }
 
+TEST(Tradeoff, BeyondTheEnvelopeTheCheaperRunServes) {
+  // (1e-2, 15) is dominated by (5e-3, 13): up to error 1e-2 the cheaper run is the answer.
+  const std::vector<TradeoffPoint> points = {{1e-3, 100}, {5e-3, 13}, {1e-2, 15}};
+  EXPECT_EQ(*cost_at_error(points, 8e-3), 13.0);
+  EXPECT_EQ(*cost_at_error(points, 1e-2), 13.0);
+  EXPECT_FALSE(cost_at_error(points, 1.1e-2));
+}
+
 }  // namespace
 }  // namespace patchwork::performance
