@@ -205,7 +205,7 @@ Ratios ratio_table(const std::vector<Method>& methods, const std::vector<double>
 }
 
 // Why the goals that were missed were missed, from the runs themselves.
-std::string why_missed(const Ratios& ratios, const std::vector<Method>& methods, double diagonal) {
+std::string why_missed(const Ratios& ratios, const std::vector<Method>& methods) {
   const auto missed = [&](const std::string& what) {
     return std::any_of(ratios.missed.begin(), ratios.missed.end(),
                        [&](const std::string& m) { return m.find(what) != std::string::npos; });
@@ -560,7 +560,7 @@ int run(const Arguments& arguments) {
   } else {
     md << "Not met:\n\n";
     for (const std::string& m : ratios.missed) md << "- " << m << "\n";
-    md << "\n" << why_missed(ratios, methods, diagonal);
+    md << "\n" << why_missed(ratios, methods);
   }
   md << throughput << hard_cases.markdown << "\n" << benchmarks;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
