@@ -1,7 +1,9 @@
 #include "subdivision/cage.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "core/errors.h"
 #include "meshes/edge_table.h"
@@ -26,16 +28,17 @@ void check_topology(const FaceVertexMesh& mesh) {
   }
   if (!report.non_manifold_edges.empty()) {
     const auto& e = report.non_manifold_edges.front();
-    throw TopologyError(detail::message("validate_cage: edge (", e[0], ", ", e[1],
-                                        ") has more than two faces (non-manifold)"));
+    throw TopologyError(
+        detail::message("validate_cage: edge (", e[0], ", ", e[1], ") has more than two faces (non-manifold)"));
   }
   if (!report.non_manifold_vertices.empty()) {
     throw TopologyError(detail::message("validate_cage: vertex ", report.non_manifold_vertices.front(),
                                         " is non-manifold (its faces form more than one fan)"));
   }
   if (!report.orientable) {
-    throw TopologyError("validate_cage: the mesh is not orientable (a Moebius band or Klein bottle has no "
-                        "consistent normal, and no subdivision surface)");
+    throw TopologyError(
+        "validate_cage: the mesh is not orientable (a Moebius band or Klein bottle has no "
+        "consistent normal, and no subdivision surface)");
   }
   // Two faces on an edge must walk it in opposite directions.
   const detail::EdgeTable table(mesh);
@@ -47,6 +50,32 @@ void check_topology(const FaceVertexMesh& mesh) {
       throw TopologyError(detail::message("validate_cage: faces ", table.face_of(c), " and ", table.face_of(t),
                                           " walk edge (", corners[c], ", ", corners[table.next_corner(c)],
                                           ") in the same direction (orient() the mesh first)"));
+    }
+  }
+}
+
+// Two triangles on the same three vertices (a "pillow") are a closed surface, but Loop
+// refinement joins their edge points by two edges with the same ends (one inside each triangle),
+// which a face-vertex mesh cannot tell apart: the refined mesh would read as non-manifold.
+// Found by fuzz_subdivision (tests/fuzz/regressions/fuzz_subdivision).
+void check_distinct_triangles(const FaceVertexMesh& mesh) {
+  std::vector<std::array<std::uint32_t, 4>> triangles;  // sorted vertices, then the face
+  triangles.reserve(mesh.face_count());
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto face = mesh.face(f);
+    std::array<std::uint32_t, 4> key = {face[0], face[1], face[2], static_cast<std::uint32_t>(f)};
+    std::sort(key.begin(), key.begin() + 3);
+    triangles.push_back(key);
+  }
+  std::sort(triangles.begin(), triangles.end());
+  for (std::size_t k = 1; k < triangles.size(); ++k) {
+    const auto& a = triangles[k - 1];
+    const auto& b = triangles[k];
+    if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) {
+      throw TopologyError(detail::message("validate_cage: faces ", a[3], " and ", b[3], " are both the triangle (",
+                                          a[0], ", ", a[1], ", ", a[2],
+                                          "): Loop refinement would join them by edges with the "
+                                          "same ends, which a face-vertex mesh cannot tell apart (use catmull-clark)"));
     }
   }
 }
@@ -63,6 +92,7 @@ void validate_cage(const SubdivisionCage& cage) {
                                             mesh.face_sizes()[f], " corners (triangulate it or use catmull-clark)"));
       }
     }
+    check_distinct_triangles(mesh);
   }
   check_topology(mesh);
 
@@ -71,8 +101,8 @@ void validate_cage(const SubdivisionCage& cage) {
   for (std::size_t k = 0; k < cage.creases.size(); ++k) {
     const Crease& crease = cage.creases[k];
     if (crease.a >= vertex_count || crease.b >= vertex_count) {
-      throw InvalidInput(detail::message("validate_cage: crease ", k, " names vertex ",
-                                         std::max(crease.a, crease.b), " of ", vertex_count));
+      throw InvalidInput(detail::message("validate_cage: crease ", k, " names vertex ", std::max(crease.a, crease.b),
+                                         " of ", vertex_count));
     }
     check_sharpness(crease.sharpness, "crease", k);
   }
@@ -94,27 +124,27 @@ void validate_cage(const SubdivisionCage& cage) {
   }
   for (std::size_t k = 0; k < cage.corners.size(); ++k) {
     if (cage.corners[k].vertex >= vertex_count) {
-      throw InvalidInput(detail::message("validate_cage: corner ", k, " names vertex ", cage.corners[k].vertex,
-                                         " of ", vertex_count));
+      throw InvalidInput(
+          detail::message("validate_cage: corner ", k, " names vertex ", cage.corners[k].vertex, " of ", vertex_count));
     }
     check_sharpness(cage.corners[k].sharpness, "corner", k);
   }
   for (std::size_t k = 0; k < cage.holes.size(); ++k) {
     if (cage.holes[k] >= mesh.face_count()) {
-      throw InvalidInput(detail::message("validate_cage: hole ", k, " names face ", cage.holes[k], " of ",
-                                         mesh.face_count()));
+      throw InvalidInput(
+          detail::message("validate_cage: hole ", k, " names face ", cage.holes[k], " of ", mesh.face_count()));
     }
   }
   if (cage.vertex_data.cols() > 0 && static_cast<std::size_t>(cage.vertex_data.rows()) != vertex_count) {
-    throw InvalidInput(detail::message("validate_cage: vertex data has ", cage.vertex_data.rows(),
-                                       " rows for ", vertex_count, " vertices"));
+    throw InvalidInput(detail::message("validate_cage: vertex data has ", cage.vertex_data.rows(), " rows for ",
+                                       vertex_count, " vertices"));
   }
   if (!cage.vertex_data.allFinite()) throw InvalidInput("validate_cage: vertex data has a value that is not finite");
   if (cage.face_varying) {
     const FaceVaryingData& data = *cage.face_varying;
     if (data.indices.size() != mesh.face_indices().size()) {
-      throw InvalidInput(detail::message("validate_cage: face-varying data has ", data.indices.size(),
-                                         " indices for ", mesh.face_indices().size(), " face corners"));
+      throw InvalidInput(detail::message("validate_cage: face-varying data has ", data.indices.size(), " indices for ",
+                                         mesh.face_indices().size(), " face corners"));
     }
     for (std::size_t c = 0; c < data.indices.size(); ++c) {
       if (data.indices[c] >= static_cast<std::size_t>(data.values.rows())) {
@@ -131,9 +161,12 @@ void validate_cage(const SubdivisionCage& cage) {
 
 const char* scheme_name(SubdivisionScheme scheme) {
   switch (scheme) {
-    case SubdivisionScheme::catmull_clark: return "catmull-clark";
-    case SubdivisionScheme::loop: return "loop";
-    case SubdivisionScheme::bilinear: return "bilinear";
+    case SubdivisionScheme::catmull_clark:
+      return "catmull-clark";
+    case SubdivisionScheme::loop:
+      return "loop";
+    case SubdivisionScheme::bilinear:
+      return "bilinear";
   }
   return "?";
 }
@@ -142,8 +175,8 @@ SubdivisionScheme parse_scheme(const std::string& name) {
   for (auto scheme : {SubdivisionScheme::catmull_clark, SubdivisionScheme::loop, SubdivisionScheme::bilinear}) {
     if (name == scheme_name(scheme)) return scheme;
   }
-  throw InvalidInput(detail::message("unknown subdivision scheme '", name,
-                                     "' (expected catmull-clark, loop or bilinear)"));
+  throw InvalidInput(
+      detail::message("unknown subdivision scheme '", name, "' (expected catmull-clark, loop or bilinear)"));
 }
 
 }  // namespace patchwork

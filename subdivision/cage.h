@@ -89,7 +89,7 @@ inline constexpr double infinitely_sharp = 10.0;
 
 /// Checks that the cage can be subdivided: at least one face; a manifold, consistently oriented
 /// mesh (each edge in at most two faces, walked in opposite directions, every vertex one fan);
-/// triangles only for Loop; creases on cage edges, corners and holes in range, sharpness >= 0
+/// triangles only for Loop, no two of them on the same three vertices; creases on cage edges, corners and holes in range, sharpness >= 0
 /// and not NaN; vertex data with one row per vertex; face-varying indices one per corner and in
 /// range; every value finite.
 /// \throws TopologyError for the connectivity, InvalidInput for the rest, naming the element.

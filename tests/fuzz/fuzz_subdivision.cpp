@@ -4,7 +4,9 @@
 // validate_cage() lets through must not crash OpenSubdiv, and the refined report must be the
 // refined mesh's.
 
+#include <cstdio>
 #include <limits>
+#include <string>
 
 #include "meshes/topology.h"
 #include "subdivision/limit_surface.h"
@@ -26,7 +28,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::uint32_t s = bytes.below(8);
     return s == 7 ? std::numeric_limits<double>::infinity() : s == 6 ? -1.0 : s * 0.75;
   };
-  for (std::uint32_t k = bytes.below(4); k > 0; --k) cage.creases.push_back({bytes.below(vertices), bytes.below(vertices), sharpness()});
+  for (std::uint32_t k = bytes.below(4); k > 0; --k)
+    cage.creases.push_back({bytes.below(vertices), bytes.below(vertices), sharpness()});
   for (std::uint32_t k = bytes.below(3); k > 0; --k) cage.corners.push_back({bytes.below(vertices), sharpness()});
   for (std::uint32_t k = bytes.below(2); k > 0; --k) cage.holes.push_back(bytes.below(faces));
   const int levels = 1 + static_cast<int>(bytes.below(2));
@@ -35,7 +38,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const UniformRefinement refined = refine_uniform(cage, levels);
     refined.cage.mesh.validate();
     if (refined.cage.holes.empty()) {
-      PATCHWORK_FUZZ_CHECK(to_json(refined.topology) == to_json(analyze(refined.cage.mesh)));
+      const std::string derived = to_json(refined.topology);
+      const std::string analysed = to_json(analyze(refined.cage.mesh));
+      if (derived != analysed) {
+        std::fprintf(stderr, "derived  %s\nanalysed %s\n", derived.c_str(), analysed.c_str());
+        std::fprintf(stderr, "cage: %zu vertices, %zu faces, scheme %d, boundary %d, levels %d\n",
+                     cage.mesh.vertex_count(), cage.mesh.face_count(), static_cast<int>(cage.options.scheme),
+                     static_cast<int>(cage.options.boundary), levels);
+        for (std::size_t f = 0; f < cage.mesh.face_count(); ++f) {
+          std::fprintf(stderr, " face");
+          for (std::uint32_t v : cage.mesh.face(f)) std::fprintf(stderr, " %u", v);
+          std::fprintf(stderr, "\n");
+        }
+      }
+      PATCHWORK_FUZZ_CHECK(derived == analysed);
     }
     const LimitSurface surface(cage, 2);
     for (std::size_t f = 0; f < surface.face_count(); ++f) {

@@ -460,6 +460,15 @@ TEST(Subdivision, BadInputIsRefusedWithTheElement) {
   EXPECT_NE(error_message<TopologyError>([] { refine_uniform(cage_of(cube(), SubdivisionScheme::loop), 1); })
                 .find("face 0 has 4 corners"),
             std::string::npos);
+  // Two triangles on one vertex triple: Loop would join them by edges with the same ends.
+  const FaceVertexMesh pillow = make_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, FaceList{{0, 1, 2}, {1, 0, 2}});
+  EXPECT_NE(error_message<TopologyError>([&] { refine_uniform(cage_of(pillow, SubdivisionScheme::loop), 2); })
+                .find("faces 0 and 1 are both the triangle (0, 1, 2)"),
+            std::string::npos);
+  // Catmull-Clark splits it into quads through face points: a closed sphere at every level.
+  const UniformRefinement pillow_quads = refine_uniform(cage_of(pillow), 2);
+  EXPECT_EQ(to_json(pillow_quads.topology), to_json(analyze(pillow_quads.cage.mesh)));
+  EXPECT_EQ(pillow_quads.topology.euler, 2);
   FaceList faces = testing::faces_of(cube());
   std::reverse(faces[2].begin(), faces[2].end());
   const FaceVertexMesh flipped = make_mesh(testing::points_of(cube()), faces);
