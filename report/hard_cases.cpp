@@ -281,7 +281,7 @@ std::string markdown(const std::vector<HardCaseRow>& rows, const std::vector<Cas
   };
 
   std::ostringstream out;
-  out << "## Hard cases: accuracy against exact arithmetic\n\n";
+  out << "## 6. Hard cases: accuracy against exact arithmetic\n\n";
   out << "| case | parameters | n | points |";
   for (HardCaseEvaluator evaluator : kEvaluators) out << " " << evaluator_title(evaluator) << " |";
   out << " max cond |\n|---|---|---:|---:|";

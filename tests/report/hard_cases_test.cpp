@@ -150,7 +150,7 @@ TEST(HardCaseSection, WritesOneDataFilePerCaseAndEvaluatorAndATable) {
     }
     EXPECT_NE(section.markdown.find("`" + row.name + "`"), std::string::npos) << row.name;
   }
-  EXPECT_EQ(section.markdown.rfind("## Hard cases: accuracy against exact arithmetic\n", 0), 0u);
+  EXPECT_EQ(section.markdown.rfind("## 6. Hard cases: accuracy against exact arithmetic\n", 0), 0u);
   EXPECT_NE(section.markdown.find("](performance/hard_cases.png)"), std::string::npos);
   EXPECT_NE(section.gnuplot.find("set output 'hard_cases.png'"), std::string::npos);
   EXPECT_NE(section.gnuplot.find("pngcairo size 900,600"), std::string::npos);

@@ -28,7 +28,7 @@ TEST(ReportQuick, WritesEverySectionWithMeasuredRows) {
   ASSERT_EQ(std::system(command.c_str()), 0) << testing::slurp(folder.path() / "log");
   const std::string md = testing::slurp(out);
   for (const char* heading : {"## 1. The teapot: patchwork", "## 2. The peers", "## 3. Plots", "## 4. Ratios",
-                              "## 5. Throughput", "## Hard cases", "## 7. Subdivision"}) {
+                              "## 5. Throughput", "## 6. Hard cases", "## 7. Subdivision"}) {
     EXPECT_NE(md.find(heading), std::string::npos) << heading;
   }
   EXPECT_NE(md.find("On every row the measured error is within the a-priori bound."), std::string::npos);
