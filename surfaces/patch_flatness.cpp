@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "core/errors.h"
 
@@ -17,11 +18,14 @@ SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch) {
   for (int j = 0; j <= m; ++j) {
     for (int i = 0; i <= n; ++i) {
       const Vec3& p = patch.control_point(i, j);
-      if (i + 2 <= n) uu = std::max(uu, (patch.control_point(i + 2, j) - 2.0 * patch.control_point(i + 1, j) + p).norm());
-      if (j + 2 <= m) vv = std::max(vv, (patch.control_point(i, j + 2) - 2.0 * patch.control_point(i, j + 1) + p).norm());
+      if (i + 2 <= n)
+        uu = std::max(uu, (patch.control_point(i + 2, j) - 2.0 * patch.control_point(i + 1, j) + p).norm());
+      if (j + 2 <= m)
+        vv = std::max(vv, (patch.control_point(i, j + 2) - 2.0 * patch.control_point(i, j + 1) + p).norm());
       if (i + 1 <= n && j + 1 <= m) {
-        uv = std::max(uv, (patch.control_point(i + 1, j + 1) - patch.control_point(i + 1, j) -
-                           patch.control_point(i, j + 1) + p).norm());
+        uv = std::max(
+            uv, (patch.control_point(i + 1, j + 1) - patch.control_point(i + 1, j) - patch.control_point(i, j + 1) + p)
+                    .norm());
       }
     }
   }
@@ -52,11 +56,11 @@ Eigen::MatrixXd segment_matrix(int n, double t0, double t1) {
 
 }  // namespace
 
-SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int pieces) {
+std::vector<SecondDerivativeBounds> piece_second_derivative_bounds(const BezierPatch3& patch, int pieces) {
   if (pieces < 1 || pieces > 64) {
     throw InvalidInput(detail::message("second_derivative_bounds: ", pieces, " pieces is not in [1, 64]"));
   }
-  if (pieces == 1) return second_derivative_bounds(patch);
+  if (pieces == 1) return {second_derivative_bounds(patch)};
   // The net of piece (a, b) is S_a P S_b^T per coordinate (segment matrices in u and v): the same
   // points as de Casteljau sub-patches, without building a patch per piece.
   const int n = patch.degree_u();
@@ -74,7 +78,7 @@ SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int p
     su.push_back(segment_matrix(n, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces));
     sv.push_back(segment_matrix(m, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces).transpose());
   }
-  SecondDerivativeBounds M{0.0, 0.0, 0.0};
+  std::vector<SecondDerivativeBounds> bounds(static_cast<std::size_t>(pieces) * static_cast<std::size_t>(pieces));
   const double scale = static_cast<double>(pieces) * pieces;
   std::array<Eigen::MatrixXd, 3> row;
   std::array<Eigen::MatrixXd, 3> piece;
@@ -90,13 +94,21 @@ SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int p
         for (int i = 0; i <= n; ++i) {
           if (i + 2 <= n) uu = std::max(uu, (at(i + 2, j) - 2.0 * at(i + 1, j) + at(i, j)).norm());
           if (j + 2 <= m) vv = std::max(vv, (at(i, j + 2) - 2.0 * at(i, j + 1) + at(i, j)).norm());
-          if (i + 1 <= n && j + 1 <= m) uv = std::max(uv, (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j)).norm());
+          if (i + 1 <= n && j + 1 <= m)
+            uv = std::max(uv, (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j)).norm());
         }
       }
-      M.uu = std::max(M.uu, scale * n * (n - 1.0) * uu);
-      M.uv = std::max(M.uv, scale * static_cast<double>(n) * m * uv);
-      M.vv = std::max(M.vv, scale * m * (m - 1.0) * vv);
+      bounds[static_cast<std::size_t>(a + pieces * b)] = {
+          scale * n * (n - 1.0) * uu, scale * static_cast<double>(n) * m * uv, scale * m * (m - 1.0) * vv};
     }
+  }
+  return bounds;
+}
+
+SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int pieces) {
+  SecondDerivativeBounds M{0.0, 0.0, 0.0};
+  for (const SecondDerivativeBounds& piece : piece_second_derivative_bounds(patch, pieces)) {
+    M = {std::max(M.uu, piece.uu), std::max(M.uv, piece.uv), std::max(M.vv, piece.vv)};
   }
   return M;
 }
@@ -187,7 +199,8 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance) {
   const double smallest_u = M.uu > 0.0 ? std::sqrt(M.uu / e) : 1.0;
   // Compared as a double first: beyond 2^63 the conversion would be undefined behaviour.
   if (!(std::floor(smallest_u) <= static_cast<double>(limit))) {
-    throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " needs more than 2^20 segments in u"));
+    throw InvalidInput(
+        detail::message("grid_for_tolerance: tolerance ", tolerance, " needs more than 2^20 segments in u"));
   }
   const std::int64_t first = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(smallest_u)));
   // N_v cannot drop below what M_vv alone needs; once it is there, larger N_u only costs.

@@ -82,7 +82,8 @@ double pattern_bound(const std::vector<Triangle>& kept, const std::vector<Triang
   double bound = 0.0;
   for (const auto* list : {&kept, &dropped}) {
     for (const Triangle& t : *list) {
-      bound = std::max(bound, triangle_flatness_bound(bounds, points[t[0]].uv, points[t[1]].uv, points[t[2]].uv, aspect));
+      bound =
+          std::max(bound, triangle_flatness_bound(bounds, points[t[0]].uv, points[t[1]].uv, points[t[2]].uv, aspect));
     }
   }
   return bound;
@@ -123,8 +124,10 @@ class Tessellator {
     const int modes = options_.tolerance.has_value() + options_.relative_tolerance.has_value() +
                       options_.segments.has_value() + options_.camera.has_value();
     if (modes != 1) {
-      throw InvalidInput(detail::message("tessellate: give exactly one of tolerance, relative tolerance, segments "
-                                         "and camera (", modes, " given)"));
+      throw InvalidInput(
+          detail::message("tessellate: give exactly one of tolerance, relative tolerance, segments "
+                          "and camera (",
+                          modes, " given)"));
     }
     if (!(options_.crease_angle >= 0.0) || !std::isfinite(options_.crease_angle)) {
       throw InvalidInput(detail::message("tessellate: crease angle ", options_.crease_angle, " is not >= 0"));
@@ -167,8 +170,10 @@ class Tessellator {
       try {
         grid = grid_for_tolerance(plan.bounds, plan.tolerance);
       } catch (const InvalidInput&) {
-        throw InvalidInput(detail::message("tessellate: piece ", p, " would need more than 2^20 segments per side at "
-                                           "tolerance ", plan.tolerance, " (over 10^12 triangles; the limit is ",
+        throw InvalidInput(detail::message("tessellate: piece ", p,
+                                           " would need more than 2^20 segments per side at "
+                                           "tolerance ",
+                                           plan.tolerance, " (over 10^12 triangles; the limit is ",
                                            options_.max_triangles, ")"));
       }
       // A curved patch keeps two segments per direction at any tolerance: with one, a tube of
@@ -266,8 +271,8 @@ class Tessellator {
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       const PatternRates r = rates(p);
-      triangles += 2.0 * std::max(r.inner_u, 2) * std::max(r.inner_v, 2) + r.edges[0] + r.edges[1] + r.edges[2] +
-                   r.edges[3];
+      triangles +=
+          2.0 * std::max(r.inner_u, 2) * std::max(r.inner_v, 2) + r.edges[0] + r.edges[1] + r.edges[2] + r.edges[3];
     }
     if (triangles > static_cast<double>(options_.max_triangles)) {
       throw InvalidInput(detail::message("tessellate: about ", static_cast<std::int64_t>(triangles),
@@ -432,13 +437,23 @@ class Tessellator {
 
   // --- assembly -----------------------------------------------------------------------------
 
-  Vec2 uv_of(std::uint32_t p, const Vec2& uv) const {
+  // The patch a piece belongs to (itself unless the pieces are split patches).
+  std::uint32_t patch_of(std::uint32_t p) const { return pieces_.domains.empty() ? p : pieces_.domains[p].patch; }
+
+  Vec2 uv_of(std::uint32_t p, Vec2 uv) const {
+    std::size_t patches = count_;
+    if (!pieces_.domains.empty()) {
+      const SurfacePieces::Domain& domain = pieces_.domains[p];
+      uv = Vec2(domain.u0, domain.v0) + domain.size * uv;
+      patches = pieces_.patch_count;
+    }
     if (options_.uv != UvMode::atlas) return uv;
     // Patches in a grid of equal cells, each inset by a gutter of 2% of the cell.
-    const auto columns = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(count_))));
-    const std::size_t rows = (count_ + columns - 1) / columns;
+    const std::uint32_t patch = patch_of(p);
+    const auto columns = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(patches))));
+    const std::size_t rows = (patches + columns - 1) / columns;
     const Vec2 cell(1.0 / static_cast<double>(columns), 1.0 / static_cast<double>(rows));
-    const Vec2 origin(static_cast<double>(p % columns) * cell.x(), static_cast<double>(p / columns) * cell.y());
+    const Vec2 origin(static_cast<double>(patch % columns) * cell.x(), static_cast<double>(patch / columns) * cell.y());
     return origin + 0.02 * cell + 0.96 * uv.cwiseProduct(cell);
   }
 
@@ -484,9 +499,10 @@ class Tessellator {
         const std::uint32_t id = out.welded[k];
         const Vec2 uv = uv_of(p, out.pattern.points[k].uv);
         for (std::uint32_t v = first_vertex[id]; v != no_id; v = next_vertex[v]) {
-          const bool same = mesh.normals[v].dot(out.normals[k]) >= cos_crease && (!with_uv || mesh.uvs[v] == uv) &&
-                            (!options_.tangents || (mesh.tangents[v].w() == out.tangents[k].w() &&
-                                                    mesh.tangents[v].head<3>().dot(out.tangents[k].head<3>()) >= cos_crease));
+          const bool same =
+              mesh.normals[v].dot(out.normals[k]) >= cos_crease && (!with_uv || mesh.uvs[v] == uv) &&
+              (!options_.tangents || (mesh.tangents[v].w() == out.tangents[k].w() &&
+                                      mesh.tangents[v].head<3>().dot(out.tangents[k].head<3>()) >= cos_crease));
           if (same) return vertex_of[k] = v;
         }
         const auto v = static_cast<std::uint32_t>(mesh.positions.size());
@@ -502,7 +518,7 @@ class Tessellator {
       };
       for (const Triangle& t : out.kept) {
         for (std::uint32_t corner : t) mesh.indices.push_back(vertex(corner));
-        result.triangle_patches.push_back(p);
+        result.triangle_patches.push_back(patch_of(p));
       }
       // What measuring needs stays (parameters, welded ids, triangles); the rest is in the mesh.
       PatchOutput& done = outputs_[p];
@@ -521,15 +537,15 @@ class Tessellator {
   // every parameter triangle, L the linear interpolant of the mesh positions.
   double measure() const {
     static constexpr std::array<std::array<double, 3>, 10> samples = {{{1, 0, 0},
-                                                                      {0, 1, 0},
-                                                                      {0, 0, 1},
-                                                                      {0.5, 0.5, 0},
-                                                                      {0, 0.5, 0.5},
-                                                                      {0.5, 0, 0.5},
-                                                                      {1.0 / 3, 1.0 / 3, 1.0 / 3},
-                                                                      {2.0 / 3, 1.0 / 6, 1.0 / 6},
-                                                                      {1.0 / 6, 2.0 / 3, 1.0 / 6},
-                                                                      {1.0 / 6, 1.0 / 6, 2.0 / 3}}};
+                                                                       {0, 1, 0},
+                                                                       {0, 0, 1},
+                                                                       {0.5, 0.5, 0},
+                                                                       {0, 0.5, 0.5},
+                                                                       {0.5, 0, 0.5},
+                                                                       {1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                                                       {2.0 / 3, 1.0 / 6, 1.0 / 6},
+                                                                       {1.0 / 6, 2.0 / 3, 1.0 / 6},
+                                                                       {1.0 / 6, 1.0 / 6, 2.0 / 3}}};
     std::vector<std::uint32_t> tessellated;
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (!plans_[p].culled) tessellated.push_back(p);
@@ -608,34 +624,177 @@ Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& 
   return Tessellator(pieces, options).run();
 }
 
-SurfacePieces surface_pieces(const PatchSet& set, bool tight_diagonal) {
+namespace {
+
+// The 4 x 4 sub-net bounds of every patch (what the rates of whole and split patches rest on).
+std::vector<std::vector<SecondDerivativeBounds>> cell_bounds(const PatchSet& set) {
   if (!(set.size() > 0.0)) {
     throw InvalidInput("tessellate: every control point is the same point: there is no surface to tessellate");
   }
+  std::vector<std::vector<SecondDerivativeBounds>> cells;
+  for (const BezierPatch3& patch : set.patches()) cells.push_back(piece_second_derivative_bounds(patch, bound_pieces));
+  return cells;
+}
+
+// The bounds of piece (a, b) of a k x k split, in the piece's parameters: the largest cell bound
+// over the piece, times (1/k)^2 by the chain rule. k = 1 is the whole patch.
+SecondDerivativeBounds split_bounds(const std::vector<SecondDerivativeBounds>& cells, int k, int a, int b) {
+  const int span = bound_pieces / k;
+  SecondDerivativeBounds M{0.0, 0.0, 0.0};
+  for (int y = b * span; y < (b + 1) * span; ++y) {
+    for (int x = a * span; x < (a + 1) * span; ++x) {
+      const SecondDerivativeBounds& c = cells[static_cast<std::size_t>(x + bound_pieces * y)];
+      M = {std::max(M.uu, c.uu), std::max(M.uv, c.uv), std::max(M.vv, c.vv)};
+    }
+  }
+  const double scale = 1.0 / (static_cast<double>(k) * k);
+  return {scale * M.uu, scale * M.uv, scale * M.vv};
+}
+
+double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {
+  if (!tight_diagonal) return set.size();
+  Eigen::AlignedBox3d box;
+  for (const BezierPatch3& patch : set.patches()) box.extend(bounding_box(patch, 1e-6 * set.size()));
+  return box.diagonal().norm();
+}
+
+// Pieces of `set`, each patch split k x k (k = 1: the patches themselves).
+SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k,
+                        double diagonal) {
   const std::vector<BezierPatch3>& patches = set.patches();
   SurfacePieces pieces;
-  pieces.count = patches.size();
-  pieces.patches = &patches;
-  for (const SharedEdge& shared : set.shared_edges()) pieces.shared.push_back({shared.first, shared.second, shared.reversed});
-  pieces.collapsed = set.collapsed_edges();
-  pieces.bounds.resize(patches.size());
-  Eigen::AlignedBox3d box;
-  for (std::size_t p = 0; p < patches.size(); ++p) {
-    pieces.bounds[p] = second_derivative_bounds(patches[p], bound_pieces);
-    if (tight_diagonal) box.extend(bounding_box(patches[p], 1e-6 * set.size()));
+  pieces.diagonal = diagonal;
+  if (k == 1) {
+    pieces.count = patches.size();
+    pieces.patches = &patches;
+    for (const SharedEdge& shared : set.shared_edges())
+      pieces.shared.push_back({shared.first, shared.second, shared.reversed});
+    pieces.collapsed = set.collapsed_edges();
+    for (std::size_t p = 0; p < patches.size(); ++p) pieces.bounds.push_back(split_bounds(cells[p], 1, 0, 0));
+    pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
+                                      bool with_tangents) {
+      const BezierPatch3& patch = patches[p];
+      return evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), us, vs), with_tangents);
+    };
+    pieces.evaluate = [&patches](std::uint32_t p, double u, double v) { return patches[p].evaluate(u, v); };
+    return pieces;
   }
-  pieces.diagonal = tight_diagonal ? box.diagonal().norm() : set.size();
-  pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
-                                    bool with_tangents) {
-    const BezierPatch3& patch = patches[p];
-    return evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), us, vs), with_tangents);
+  // Piece (a, b) of patch p is number p k^2 + a + k b.
+  const auto kk = static_cast<std::uint32_t>(k * k);
+  const auto piece = [k, kk](std::uint32_t p, int a, int b) { return p * kk + static_cast<std::uint32_t>(a + k * b); };
+  // The k pieces along a patch edge, in its boundary_curve direction (u along v0 and v1, v along u0 and u1).
+  const auto along = [&](const EdgeRef& edge, int i) -> EdgeRef {
+    const int last = k - 1;
+    switch (edge.edge) {
+      case PatchEdge::v0:
+        return {piece(edge.patch, i, 0), PatchEdge::v0};
+      case PatchEdge::v1:
+        return {piece(edge.patch, i, last), PatchEdge::v1};
+      case PatchEdge::u0:
+        return {piece(edge.patch, 0, i), PatchEdge::u0};
+      case PatchEdge::u1:
+        return {piece(edge.patch, last, i), PatchEdge::u1};
+    }
+    return edge;
   };
-  pieces.evaluate = [&patches](std::uint32_t p, double u, double v) { return patches[p].evaluate(u, v); };
+  pieces.count = patches.size() * kk;
+  pieces.patch_count = patches.size();
+  const double size = 1.0 / k;  // exact for k = 2, 4: the split lines a/k are exact too
+  for (std::uint32_t p = 0; p < patches.size(); ++p) {
+    for (int b = 0; b < k; ++b) {
+      for (int a = 0; a < k; ++a) {
+        pieces.domains.push_back({p, a * size, b * size, size});
+        pieces.bounds.push_back(split_bounds(cells[p], k, a, b));
+        if (a + 1 < k)
+          pieces.shared.push_back({{piece(p, a, b), PatchEdge::u1}, {piece(p, a + 1, b), PatchEdge::u0}, false});
+        if (b + 1 < k)
+          pieces.shared.push_back({{piece(p, a, b), PatchEdge::v1}, {piece(p, a, b + 1), PatchEdge::v0}, false});
+      }
+    }
+  }
+  for (const SharedEdge& shared : set.shared_edges()) {
+    for (int i = 0; i < k; ++i) {
+      pieces.shared.push_back(
+          {along(shared.first, i), along(shared.second, shared.reversed ? k - 1 - i : i), shared.reversed});
+    }
+  }
+  for (const EdgeRef& collapsed : set.collapsed_edges()) {
+    for (int i = 0; i < k; ++i) pieces.collapsed.push_back(along(collapsed, i));
+  }
+  const std::vector<SurfacePieces::Domain>& domains = pieces.domains;
+  pieces.evaluate_grid = [&patches, domains](std::uint32_t q, std::span<const double> us, std::span<const double> vs,
+                                             bool with_tangents) {
+    const SurfacePieces::Domain& d = domains[q];
+    std::vector<double> patch_us(us.begin(), us.end());
+    std::vector<double> patch_vs(vs.begin(), vs.end());
+    for (double& u : patch_us) u = d.u0 + d.size * u;
+    for (double& v : patch_vs) v = d.v0 + d.size * v;
+    const BezierPatch3& patch = patches[d.patch];
+    return evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), patch_us, patch_vs),
+                         with_tangents);
+  };
+  pieces.evaluate = [&patches, domains](std::uint32_t q, double u, double v) {
+    const SurfacePieces::Domain& d = domains[q];
+    return patches[d.patch].evaluate(d.u0 + d.size * u, d.v0 + d.size * v);
+  };
   return pieces;
 }
 
+// The a-priori cell count of every piece at tolerance eps, as plan_patches sets the rates (two
+// segments per direction at least on a curved piece); shared-edge rates and stitching come on top.
+std::int64_t estimated_cells(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps) {
+  std::int64_t total = 0;
+  for (const auto& patch_cells : cells) {
+    for (int b = 0; b < k; ++b) {
+      for (int a = 0; a < k; ++a) {
+        const SecondDerivativeBounds M = split_bounds(patch_cells, k, a, b);
+        const GridSize grid = grid_for_tolerance(M, eps);
+        const bool flat = M.uu == 0.0 && M.uv == 0.0 && M.vv == 0.0;
+        total += flat ? grid.segments_u * grid.segments_v
+                      : std::max<std::int64_t>(grid.segments_u, 2) * std::max<std::int64_t>(grid.segments_v, 2);
+      }
+    }
+  }
+  return total;
+}
+
+}  // namespace
+
+SurfacePieces surface_pieces(const PatchSet& set, bool tight_diagonal) {
+  const auto cells = cell_bounds(set);
+  return pieces_of(set, cells, 1, tight_or_control_diagonal(set, tight_diagonal));
+}
+
+SurfacePieces split_surface_pieces(const PatchSet& set, int k, bool tight_diagonal) {
+  if (k != 2 && k != 4) throw InvalidInput(detail::message("split_surface_pieces: k = ", k, " is not 2 or 4"));
+  const auto cells = cell_bounds(set);
+  return pieces_of(set, cells, k, tight_or_control_diagonal(set, tight_diagonal));
+}
+
 Tessellation tessellate(const PatchSet& set, const TessellationOptions& options) {
-  return tessellate(surface_pieces(set, options.relative_tolerance.has_value()), options);
+  const bool relative = options.relative_tolerance.has_value();
+  const std::vector<std::vector<SecondDerivativeBounds>> cells = cell_bounds(set);
+  const SurfacePieces whole = pieces_of(set, cells, 1, tight_or_control_diagonal(set, relative));
+  // Splitting: only with a valid tolerance and no other mode (plan_patches reports the rest).
+  const int modes =
+      options.tolerance.has_value() + relative + options.segments.has_value() + options.camera.has_value();
+  const double eps = options.tolerance ? *options.tolerance
+                     : relative        ? *options.relative_tolerance * whole.diagonal
+                                       : 0.0;
+  int best_k = 1;
+  if (options.split_patches && modes == 1 && std::isfinite(eps) && eps > 0.0) {
+    try {
+      std::int64_t best = estimated_cells(cells, 1, eps);
+      for (int k : {2, 4}) {
+        const std::int64_t candidate = estimated_cells(cells, k, eps);
+        if (candidate < best) best = candidate, best_k = k;
+      }
+    } catch (const InvalidInput&) {
+      best_k = 1;  // a tolerance too fine for any grid: the whole patches give the error message
+    }
+  }
+  if (best_k == 1) return tessellate(whole, options);
+  return tessellate(pieces_of(set, cells, best_k, whole.diagonal), options);
 }
 
 }  // namespace patchwork

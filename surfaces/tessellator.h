@@ -77,6 +77,10 @@ struct TessellationOptions {
   bool optimize = true;
   /// Refuse (InvalidInput naming the count) above this many triangles.
   std::int64_t max_triangles = 100'000'000;
+  /// With a tolerance (not segments, not a camera): split every patch of a set into 2 x 2 or
+  /// 4 x 4 pieces when the a-priori triangle count says that saves triangles (a patch whose
+  /// curvature varies then gets fine grids only where it bends; see split_surface_pieces).
+  bool split_patches = true;
 };
 
 struct Tessellation {
@@ -127,6 +131,19 @@ struct SurfacePieces {
   std::function<Vec3(std::uint32_t p, double u, double v)> evaluate;
   /// The pieces as Bezier patches, when they are (the camera mode needs them; else null).
   const std::vector<BezierPatch3>* patches = nullptr;
+
+  /// Where a piece lies in the parametrisation the output speaks of (UVs, triangle_patches):
+  /// [u0, u0 + size] x [v0, v0 + size] of patch `patch`.
+  struct Domain {
+    std::uint32_t patch;
+    double u0;
+    double v0;
+    double size;
+  };
+  /// One per piece, or empty: piece p is the whole of patch p.
+  std::vector<Domain> domains;
+  /// The number of patches the domains refer to (the atlas has a cell for each).
+  std::size_t patch_count = 0;
 };
 
 /// Tessellates any surface made of pieces (see the file comment).
@@ -137,6 +154,13 @@ Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& 
 /// `tight_diagonal`: the diagonal of the surface's tight box (relative tolerances need it; it
 /// costs a box search per patch); otherwise that of the control points' box, set.size().
 SurfacePieces surface_pieces(const PatchSet& set, bool tight_diagonal = true);
+
+/// The patches of `set` split into k x k pieces each (k = 2 or 4; piece (a, b) of patch p is
+/// [a/k, (a+1)/k] x [b/k, (b+1)/k], evaluated on the patch itself, so split lines are exact and
+/// shared by both sides), joined inside each patch and across the set's shared edges, collapsed
+/// where the patch edge is; bounds from the patch's 4 x 4 sub-nets over each piece; UVs and
+/// triangle_patches still speak of the patches. \throws InvalidInput unless k is 2 or 4.
+SurfacePieces split_surface_pieces(const PatchSet& set, int k, bool tight_diagonal = true);
 
 /// Tessellates `set` (see the file comment).
 /// \throws InvalidInput if the options do not name exactly one of the modes, a tolerance is not

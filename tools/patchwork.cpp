@@ -56,6 +56,8 @@ int main(int argc, char** argv) {
   tessellate->add_option("--threads", tess.threads, "Threads (0: all cores)");
   tessellate->add_option("--uv", tess.uv, "UVs: none, patch (surface parameters) or atlas");
   tessellate->add_flag("--tangents", tess.tangents, "Write glTF TANGENT");
+  tessellate->add_flag("--no-split", tess.no_split,
+                       "One grid per patch (by default patches split 2 x 2 or 4 x 4 where that saves triangles)");
   tessellate->add_option("--crease-angle", tess.crease_angle_degrees,
                          "Split vertices where normals differ by more than this (degrees)");
   tessellate->add_flag("--json", tess.json, "Print the summary as JSON");

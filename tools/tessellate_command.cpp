@@ -105,6 +105,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   options.threads = arguments.threads;
   options.uv = parse_uv(arguments.uv);
   options.tangents = arguments.tangents;
+  options.split_patches = !arguments.no_split;
   options.crease_angle = arguments.crease_angle_degrees * std::numbers::pi / 180.0;
   options.max_triangles = arguments.max_triangles;
   if (arguments.threads < 0) throw InvalidInput(detail::message("--threads ", arguments.threads, " is negative"));

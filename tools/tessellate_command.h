@@ -1,7 +1,7 @@
 #pragma once
 // `patchwork tessellate IN.bpt -o OUT.(glb|gltf|obj|off|ply) (--tolerance E |
 // --relative-tolerance R | --segments N | --camera ... --pixel-tolerance T) [--threads T]
-// [--uv none|patch|atlas] [--tangents] [--crease-angle DEG] [--json]`.
+// [--uv none|patch|atlas] [--tangents] [--no-split] [--crease-angle DEG] [--json]`.
 //
 // Prints patches, triangles, vertices, seconds (the tessellation alone), the absolute tolerance,
 // the a-priori error bound, the measured error and the culled patches; with --json one object
@@ -29,6 +29,7 @@ struct TessellateArguments {
   int threads = 0;
   std::string uv = "patch";
   bool tangents = false;
+  bool no_split = false;
   double crease_angle_degrees = 1.0;
   bool json = false;
   /// Refuse above this many triangles (the message gives the count needed).

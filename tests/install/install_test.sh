@@ -35,9 +35,10 @@ quiet "$cmake" --install "$build_dir" --config "$config" --prefix "$prefix"
 
 echo "== the installed files"
 # Every header of every module with a library (module_graph.txt lists the modules; tools is the
-# CLI), except the internal osd_refiner.h; no header that includes what is not installed.
+# CLI, report the speed-vs-error report program), except the internal osd_refiner.h; no header that
+# includes what is not installed.
 while IFS=: read -r module _; do
-  case "$module" in "#"* | tools) continue ;; esac
+  case "$module" in "#"* | tools | report) continue ;; esac
   for header in "$source_dir/$module"/*.h; do
     name="$module/${header##*/}"
     if [ "$name" = subdivision/osd_refiner.h ]; then
@@ -47,7 +48,7 @@ while IFS=: read -r module _; do
     fi
   done
 done < "$build_dir/module_graph.txt"
-[ ! -e "$include/tools" ] && [ ! -e "$include/meshes/interop" ] || fail "tools/ or meshes/interop installed"
+[ ! -e "$include/tools" ] && [ ! -e "$include/report" ] && [ ! -e "$include/meshes/interop" ] || fail "tools/, report/ or meshes/interop installed"
 headers=$(find "$include" -name '*.h' | wc -l)
 grep -rhoE '^#include "[^"]+"' "$include" | sort -u | while read -r _ quoted; do
   target="${quoted//\"/}"

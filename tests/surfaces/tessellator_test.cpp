@@ -59,8 +59,7 @@ double distance_to_edge(const BezierPatch3& patch, PatchEdge edge, const Vec3& p
 // Welded, crack-free and render-ready: the checks every tessellation must pass.
 // At coarse tolerances a chord triangle may tilt away from the normals at its corners (a patch
 // cut into 2 x 2 cells at 1e-1); with check_winding the winding must agree with them.
-void expect_render_ready(const PatchSet& set, const Tessellation& result, double tolerance,
-                         bool check_winding = true) {
+void expect_render_ready(const PatchSet& set, const Tessellation& result, double tolerance, bool check_winding = true) {
   const RenderMesh& mesh = result.mesh;
   ASSERT_NO_THROW(validate(mesh));
   EXPECT_LE(result.error_bound, tolerance);
@@ -71,7 +70,8 @@ void expect_render_ready(const PatchSet& set, const Tessellation& result, double
     // No degenerate triangle, and the winding agrees with the exact normals.
     ASSERT_GT(triangle_area(mesh, t), 1e-12 * scale * scale) << "triangle " << t;
     const Vec3& a = mesh.positions[mesh.indices[3 * t]];
-    const Vec3 geometric = (mesh.positions[mesh.indices[3 * t + 1]] - a).cross(mesh.positions[mesh.indices[3 * t + 2]] - a);
+    const Vec3 geometric =
+        (mesh.positions[mesh.indices[3 * t + 1]] - a).cross(mesh.positions[mesh.indices[3 * t + 2]] - a);
     Vec3 average = Vec3::Zero();
     for (int k = 0; k < 3; ++k) average += mesh.normals[mesh.indices[3 * t + k]];
     if (check_winding) {
@@ -139,7 +139,8 @@ TEST(Tessellator, PolesAreOneVertexWithTheExactLimitNormal) {
   const Tessellation result = tessellate(teapot(), options);
   const RenderMesh& mesh = result.mesh;
   // The lid's top (0, 0, 3.15) and the bottom's centre (0, 0, 0).
-  for (const auto& [pole, normal] : {std::pair{Vec3(0, 0, 3.15), Vec3(0, 0, 1)}, std::pair{Vec3(0, 0, 0), Vec3(0, 0, -1)}}) {
+  for (const auto& [pole, normal] :
+       {std::pair{Vec3(0, 0, 3.15), Vec3(0, 0, 1)}, std::pair{Vec3(0, 0, 0), Vec3(0, 0, -1)}}) {
     std::set<std::uint32_t> ids;
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
       if ((mesh.positions[v] - pole).norm() > 1e-12) continue;
@@ -205,6 +206,41 @@ TEST(Tessellator, UvsArePatchParametersOrAnAtlasInTheUnitSquare) {
       EXPECT_TRUE(local.minCoeff() >= 0.0199 && local.maxCoeff() <= 0.9801) << "triangle " << t;
     }
   }
+}
+
+TEST(Tessellator, SplitPatchesSaveTrianglesKeepTheGuaranteeAndSpeakOfThePatches) {
+  TessellationOptions options = relative(1e-3);
+  options.split_patches = false;
+  const Tessellation whole = tessellate(teapot(), options);
+  options.split_patches = true;
+  const Tessellation split = tessellate(teapot(), options);
+  EXPECT_LT(static_cast<double>(split.mesh.triangle_count()), 0.85 * static_cast<double>(whole.mesh.triangle_count()));
+  EXPECT_LE(split.measured_error, split.error_bound);
+  EXPECT_LE(split.error_bound, split.tolerance);
+  expect_render_ready(teapot(), split, split.tolerance, true);
+  // UVs and triangle_patches are the patches' own: each vertex is its triangle's patch at its uv.
+  const RenderMesh& mesh = split.mesh;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const BezierPatch3& patch = teapot().patches()[split.triangle_patches[t]];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.indices[3 * t + k];
+      ASSERT_LT((patch.evaluate(mesh.uvs[v].x(), mesh.uvs[v].y()) - mesh.positions[v]).norm(), 1e-12)
+          << "triangle " << t;
+    }
+  }
+  // The split lines inside a patch split no vertex: vertices of one point differ in an attribute.
+  std::map<std::uint32_t, std::vector<std::uint32_t>> vertices_of;
+  for (std::uint32_t v = 0; v < mesh.vertex_count(); ++v) vertices_of[mesh.position_ids[v]].push_back(v);
+  for (const auto& [id, vertices] : vertices_of) {
+    for (std::size_t a = 0; a < vertices.size(); ++a) {
+      for (std::size_t b = a + 1; b < vertices.size(); ++b) {
+        EXPECT_FALSE(mesh.uvs[vertices[a]] == mesh.uvs[vertices[b]] &&
+                     mesh.normals[vertices[a]] == mesh.normals[vertices[b]])
+            << "position " << id;
+      }
+    }
+  }
+  EXPECT_THROW(split_surface_pieces(teapot(), 3), InvalidInput);
 }
 
 TEST(Tessellator, BadOptionsAreRejected) {
