@@ -19,15 +19,19 @@
 namespace patchwork::performance {
 namespace {
 
-// Median and minimum of the seconds of `repeats` calls of `work` (after one untimed call).
+// Median and minimum of the seconds of at least `repeats` calls of `work` (after one untimed
+// call), and of as many more as fit in a quarter second (up to 200): a few-millisecond run is
+// otherwise at the mercy of one interruption.
 template <class Work>
 std::pair<double, double> median_seconds(int repeats, const Work& work) {
   work();
   std::vector<double> seconds;
-  for (int r = 0; r < repeats; ++r) {
+  double total = 0.0;
+  for (int r = 0; r < repeats || (total < 0.25 && r < 200); ++r) {
     const auto start = std::chrono::steady_clock::now();
     work();
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    total += seconds.back();
   }
   std::sort(seconds.begin(), seconds.end());
   const std::size_t mid = seconds.size() / 2;
