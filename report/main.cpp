@@ -504,7 +504,7 @@ int run(const Arguments& arguments) {
      << ", commit " << arguments.commit << ", on " << machine() << ". Every number below is measured by that run;"
      << " none is typed by hand. Errors are fractions of the teapot's box diagonal (" << text("%.5g", diagonal)
      << "); times are the tessellation alone, one thread unless a column says otherwise, median of " << settings.repeats
-     << " runs after a warm-up.\n\n";
+     << " runs after a warm-up (patchwork's: of as many more as fit in a quarter second, up to 200).\n\n";
   md << "## At 10^-3 of the diagonal\n\nInterpolated on each method's runs at equal measured error (section 4):\n\n";
   {
     md << "| method | triangles | ms |\n|---|---|---|\n";
