@@ -116,9 +116,10 @@ TEST_P(TeapotTessellation, IsWatertightWithinItsToleranceWithThePatchSetsTopolog
   EXPECT_NEAR(result.tolerance, GetParam() * 8.2048659851356535, 1e-9 * GetParam());
 }
 
-// 1e-5 takes 1.5 M triangles: too slow for the sanitizer build, where 1e-1 .. 1e-4 run.
+// 1e-4 and 1e-5 (90 k and 850 k triangles) are too slow for the sanitizer build, where 1e-1 ..
+// 1e-3 run (1e-3 already splits patches 4 x 4, the path the finer ones take).
 #ifdef PATCHWORK_ENABLE_ASSERTS
-INSTANTIATE_TEST_SUITE_P(Tolerances, TeapotTessellation, ::testing::Values(1e-1, 1e-2, 1e-3, 1e-4));
+INSTANTIATE_TEST_SUITE_P(Tolerances, TeapotTessellation, ::testing::Values(1e-1, 1e-2, 1e-3));
 #else
 INSTANTIATE_TEST_SUITE_P(Tolerances, TeapotTessellation, ::testing::Values(1e-1, 1e-2, 1e-3, 1e-4, 1e-5));
 #endif
