@@ -12,12 +12,12 @@
 #include "core/errors.h"
 #include "curves/bezier_curve.h"
 #include "curves/rational_bezier_curve.h"
+#include "tests/support/rounding.h"
 
 namespace patchwork {
 namespace {
 
-constexpr double eps = std::numeric_limits<double>::epsilon();
-constexpr double pi = std::numbers::pi;
+using namespace testing;
 
 // Length of y = c x^2 from x = 0 to x = X: int sqrt(1 + 4 c^2 x^2) dx
 //   = X/2 sqrt(1 + 4 c^2 X^2) + asinh(2 c X) / (4 c).
@@ -46,8 +46,6 @@ double max_norm(const BezierCurve2& curve) {
   for (const auto& p : curve.control_points()) result = std::max(result, p.norm());
   return result;
 }
-
-double random_unit() { return *rc::gen::inRange(0, 1000001) / 1e6; }
 
 TEST(ArcLength, StraightLinesAreExact) {
   // Uniform and non-uniform speed along the line through (0,0) and (3,4): the speed is a

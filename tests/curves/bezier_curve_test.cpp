@@ -14,22 +14,14 @@
 #include "core/errors.h"
 #include "curves/bernstein.h"
 #include "tests/curves/curve_generators.h"
+#include "tests/support/rounding.h"
 
 namespace patchwork {
 namespace {
 
+using namespace testing;
+
 // Unit roundoff u = 2^-53 and gamma_k = k u / (1 - k u) (Higham's constant).
-constexpr double kUnit = 0x1p-53;
-double gamma(int k) { return k * kUnit / (1.0 - k * kUnit); }
-
-template <int Dim>
-using ExactPoint = std::array<mpq_class, Dim>;
-
-mpz_class exact_binomial(int n, int k) {
-  mpz_class c;
-  mpz_bin_uiui(c.get_mpz_t(), static_cast<unsigned long>(n), static_cast<unsigned long>(k));
-  return c;
-}
 
 mpq_class exact_bernstein(int n, int i, const mpq_class& s) {
   mpq_class result = exact_binomial(n, i);
@@ -86,18 +78,6 @@ ExactPoint<Dim> exact_absolute_sum(const std::vector<Point<Dim>>& P, double s) {
 }
 
 // Largest absolute coordinate of the control points.
-template <int Dim>
-double max_abs(const std::vector<Point<Dim>>& P) {
-  double m = 0.0;
-  for (const auto& p : P) m = std::max(m, p.cwiseAbs().maxCoeff());
-  return m;
-}
-
-double falling_factorial(int n, int k) {
-  double result = 1.0;
-  for (int j = 0; j < k; ++j) result *= n - j;
-  return result;
-}
 
 // Whether |x - exact| <= bound in every coordinate, compared exactly.
 template <int Dim>
@@ -123,15 +103,6 @@ ExactPoint<Dim> uniform(double value) {
 }
 
 // Runs f and expects InvalidInput whose message contains `needle`.
-template <class F>
-void expect_invalid_input(F&& f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception; expected InvalidInput naming '" << needle << "'";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
 
 // The parabola (t, t^2) on [0, 1] as a quadratic.
 BezierCurve2 parabola(double a = 0.0, double b = 1.0) {
@@ -288,7 +259,7 @@ void check_derivatives_match_exact(const BezierCurve<Dim>& curve, double t) {
     // Rounding: the level-k points are differences of de Casteljau values of size <= 2^k M,
     // each step adding u of that scale (n de Casteljau steps, k differences, the factor and
     // h^k): (4n + 4k + 8) u n!/(n-k)! 2^k M / h^k bounds the error of C^(k).
-    const double scale = falling_factorial(n, k) * std::pow(2.0, k) * M / std::pow(h, k);
+    const double scale = reference_falling_factorial(n, k) * std::pow(2.0, k) * M / std::pow(h, k);
     const ExactPoint<Dim> bound = uniform<Dim>((4 * n + 4 * k + 8) * kUnit * scale);
     RC_ASSERT(within<Dim>(all[static_cast<std::size_t>(k)], exact, bound));
     RC_ASSERT(within<Dim>(derivative(curve, t, k), exact, bound));
@@ -315,7 +286,7 @@ RC_GTEST_PROP(BezierCurve, DerivativeCurveEvaluatesToDerivative, ()) {
     hodograph = derivative_curve(hodograph);
     RC_ASSERT(hodograph.degree() == n - k);
     // Both values carry the rounding bound of check_derivatives_match_exact.
-    const double scale = falling_factorial(n, k) * std::pow(2.0, k) * M / std::pow(h, k);
+    const double scale = reference_falling_factorial(n, k) * std::pow(2.0, k) * M / std::pow(h, k);
     const double tolerance = 2 * (4 * n + 4 * k + 8) * kUnit * scale;
     RC_ASSERT((hodograph.evaluate(t) - derivative(curve, t, k)).cwiseAbs().maxCoeff() <= tolerance);
   }
@@ -332,7 +303,7 @@ RC_GTEST_PROP(BezierCurve, ChainRuleOnInterval, ()) {
   const double M = max_abs<3>(curve.control_points());
   for (int k = 0; k <= n; ++k) {
     const Vec3 expected = derivative(unit, s, k) / std::pow(h, k);
-    const double scale = falling_factorial(n, k) * std::pow(2.0, k) * M / std::pow(h, k);
+    const double scale = reference_falling_factorial(n, k) * std::pow(2.0, k) * M / std::pow(h, k);
     RC_ASSERT((derivative(curve, t, k) - expected).cwiseAbs().maxCoeff() <= 2 * (4 * n + 4 * k + 8) * kUnit * scale);
   }
 }

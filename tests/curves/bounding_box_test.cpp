@@ -14,20 +14,14 @@
 #include "curves/bernstein.h"
 #include "curves/rational_bezier_curve.h"
 #include "tests/curves/curve_generators.h"
+#include "tests/support/rounding.h"
 
 namespace patchwork {
 namespace {
 
-constexpr double kUnit = 0x1p-53;  // unit roundoff u
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-double gamma(int k) { return k * kUnit / (1.0 - k * kUnit); }
+using namespace testing;
 
-template <int Dim>
-double max_abs(const std::vector<Point<Dim>>& P) {
-  double m = 0.0;
-  for (const auto& p : P) m = std::max(m, p.cwiseAbs().maxCoeff());
-  return m;
-}
+constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 using testing::refined_max;
 

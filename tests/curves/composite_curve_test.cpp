@@ -11,11 +11,12 @@
 #include "core/errors.h"
 #include "curves/bezier_curve.h"
 #include "curves/subdivision.h"
+#include "tests/support/rounding.h"
 
 namespace patchwork {
 namespace {
 
-constexpr double eps = std::numeric_limits<double>::epsilon();
+using namespace testing;
 
 // Three segments on [0, 1.5], [1.5, 4.5], [4.5, 5]: a cubic, its C^1 continuation by
 // Bemerkung 18 (Q_1 = (4,1) + (3/4)(3/1.5)(1,-2) = (5.5,-2)), and a line leaving at a kink.
@@ -24,8 +25,6 @@ CompositeCurve<2> three_segments() {
                             BezierCurve2({Vec2(4, 1), Vec2(5.5, -2), Vec2(7, 0), Vec2(6, 3), Vec2(9, 9)}, 1.5, 4.5),
                             BezierCurve2({Vec2(9, 9), Vec2(9, 12)}, 4.5, 5.0)});
 }
-
-double random_unit() { return *rc::gen::inRange(0, 1000001) / 1e6; }
 
 TEST(CompositeCurve, RangeAndSegmentLookup) {
   const CompositeCurve<2> curve = three_segments();

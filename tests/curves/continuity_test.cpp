@@ -13,14 +13,12 @@
 #include "core/errors.h"
 #include "curves/bezier_curve.h"
 #include "curves/subdivision.h"
+#include "tests/support/rounding.h"
 
 namespace patchwork {
 namespace {
 
-constexpr double eps = std::numeric_limits<double>::epsilon();
-
-template <int Dim>
-using ExactPoint = std::array<mpq_class, Dim>;
+using namespace testing;
 
 template <int Dim>
 ExactPoint<Dim> exact(const Point<Dim>& p) {
@@ -114,8 +112,6 @@ double max_norm(const std::vector<Point<Dim>>& points) {
   for (const auto& p : points) result = std::max(result, p.norm());
   return result;
 }
-
-double random_unit() { return *rc::gen::inRange(0, 1000001) / 1e6; }
 
 template <int Dim>
 Point<Dim> random_point(double spread) {

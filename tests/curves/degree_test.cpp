@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,29 +16,12 @@
 #include "core/errors.h"
 #include "curves/bernstein.h"
 #include "tests/curves/curve_generators.h"
+#include "tests/support/rounding.h"
 
 namespace patchwork {
 namespace {
 
-constexpr double kUnit = 0x1p-53;  // unit roundoff u
-double gamma(int k) { return k * kUnit / (1.0 - k * kUnit); }
-
-template <int Dim>
-using ExactPoint = std::array<mpq_class, Dim>;
-
-mpz_class exact_binomial(int n, int k) {
-  if (k < 0 || k > n) return 0;
-  mpz_class c;
-  mpz_bin_uiui(c.get_mpz_t(), static_cast<unsigned long>(n), static_cast<unsigned long>(k));
-  return c;
-}
-
-template <int Dim>
-double max_abs(const std::vector<Point<Dim>>& P) {
-  double m = 0.0;
-  for (const auto& p : P) m = std::max(m, p.cwiseAbs().maxCoeff());
-  return m;
-}
+using namespace testing;
 
 // Elevation by r in one step (not r single steps):
 //   Q_i = sum_j C(n, j) C(r, i - j) / C(n + r, i) P_j,  i = 0..n+r.
@@ -112,7 +95,8 @@ std::vector<ExactPoint<Dim>> exact_reduction(const std::vector<Point<Dim>>& P, i
   return R;
 }
 
-// Condition number (2-norm) of the Gram matrix of the unknowns, in doubles.
+// Condition number (2-norm) of the Gram matrix of the unknowns, in doubles: the matrix is
+// symmetric positive definite, so it is the ratio of its extreme eigenvalues.
 double gram_condition(int m, EndPoints end_points) {
   const int first = end_points == EndPoints::free ? 0 : 1;
   const int last = end_points == EndPoints::free ? m : m - 1;
@@ -122,8 +106,8 @@ double gram_condition(int m, EndPoints end_points) {
   for (int k = first; k <= last; ++k) {
     for (int j = first; j <= last; ++j) G(k - first, j - first) = exact_gram(m, k, m, j).get_d();
   }
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(G);
-  return svd.singularValues()(0) / svd.singularValues()(size - 1);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(G, Eigen::EigenvaluesOnly);
+  return eigen.eigenvalues()(size - 1) / eigen.eigenvalues()(0);
 }
 
 // Forward error of the reduction's linear solve: a backward-stable solve refined once with the
@@ -134,27 +118,6 @@ double solve_tolerance(int n, int m, EndPoints end_points, double scale) {
   const double kappa = gram_condition(m, end_points);
   const double eps_ld = static_cast<double>(std::numeric_limits<long double>::epsilon());
   return 16 * (n + 2) * (kUnit + kappa * eps_ld + kappa * kappa * kUnit * kUnit) * scale;
-}
-
-template <int Dim>
-mpq_class max_difference(const std::vector<Point<Dim>>& Q, const std::vector<ExactPoint<Dim>>& exact) {
-  mpq_class worst = 0;
-  for (std::size_t i = 0; i < Q.size(); ++i) {
-    for (std::size_t c = 0; c < Dim; ++c) {
-      const mpq_class d = abs(mpq_class(Q[i][static_cast<int>(c)]) - exact[i][c]);
-      if (d > worst) worst = d;
-    }
-  }
-  return worst;
-}
-
-template <int Dim>
-double max_abs(const std::vector<ExactPoint<Dim>>& P) {
-  double m = 0.0;
-  for (const auto& p : P) {
-    for (const auto& x : p) m = std::max(m, std::abs(x.get_d()));
-  }
-  return m;
 }
 
 // max_s |C(s) - R(s)| found without the implementation's root finder: 256 samples refined by
@@ -176,16 +139,6 @@ double sampled_max_distance(const BezierCurve<Dim>& C, const BezierCurve<Dim>& R
     return std::sqrt(squared);
   };
   return testing::refined_max(distance, 256);
-}
-
-template <class F>
-void expect_invalid_input(F&& f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception; expected InvalidInput naming '" << needle << "'";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
 }
 
 TEST(DegreeElevation, MatchesClosedFormOnSmallExample) {

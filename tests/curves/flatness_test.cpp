@@ -14,18 +14,12 @@
 #include "core/errors.h"
 #include "curves/degree.h"
 #include "tests/curves/curve_generators.h"
+#include "tests/support/rounding.h"
 
 namespace patchwork {
 namespace {
 
-constexpr double kUnit = 0x1p-53;  // unit roundoff u
-
-template <int Dim>
-double max_abs(const std::vector<Point<Dim>>& P) {
-  double m = 0.0;
-  for (const auto& p : P) m = std::max(m, p.cwiseAbs().maxCoeff());
-  return m;
-}
+using namespace testing;
 
 // Largest parametric distance |C(s) - L(s)| found at `samples` fractions of each of N uniform
 // steps, L the chord of the step; evaluated in the local parameter s = k/N + f/N.
@@ -44,16 +38,6 @@ double measured_deviation(const BezierCurve<Dim>& curve, std::int64_t N, const s
     }
   }
   return worst;
-}
-
-template <class F>
-void expect_invalid_input(F&& f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception; expected InvalidInput naming '" << needle << "'";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
 }
 
 TEST(Flatness, BoundFollowsClosedForm) {

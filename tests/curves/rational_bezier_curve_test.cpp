@@ -12,12 +12,12 @@
 
 #include "core/errors.h"
 #include "curves/bezier_curve.h"
+#include "tests/support/rounding.h"
 
 namespace patchwork {
 namespace {
 
-constexpr double eps = std::numeric_limits<double>::epsilon();
-constexpr double pi = std::numbers::pi;
+using namespace testing;
 
 // The unit quarter circle in the rational parametrisation t = tan(theta/2): homogeneous points
 // (1,0,1), (1,1,1), (0,2,2) give X = 1 - s^2, Y = 2s, W = 1 + s^2 with s = (t-a)/(b-a), so

@@ -13,15 +13,12 @@
 
 #include "core/errors.h"
 #include "tests/curves/curve_generators.h"
+#include "tests/support/rounding.h"
 
 namespace patchwork {
 namespace {
 
-constexpr double kUnit = 0x1p-53;  // unit roundoff u
-double gamma(int k) { return k * kUnit / (1.0 - k * kUnit); }
-
-template <int Dim>
-using ExactPoint = std::array<mpq_class, Dim>;
+using namespace testing;
 
 // The blossom (polar form) f(u_1, ..., u_n) of the curve with control points P, in rational
 // arithmetic: de Casteljau with parameter u_k at level k. The piece of C on [s0, s1] (local
@@ -54,48 +51,12 @@ std::vector<ExactPoint<Dim>> exact_piece(const std::vector<Point<Dim>>& P, const
 }
 
 template <int Dim>
-double max_abs(const std::vector<Point<Dim>>& P) {
-  double m = 0.0;
-  for (const auto& p : P) m = std::max(m, p.cwiseAbs().maxCoeff());
-  return m;
-}
-
-// Largest coordinate difference between computed and exact control points.
-template <int Dim>
-mpq_class max_difference(const std::vector<Point<Dim>>& Q, const std::vector<ExactPoint<Dim>>& exact) {
-  mpq_class worst = 0;
-  for (std::size_t i = 0; i < Q.size(); ++i) {
-    for (std::size_t c = 0; c < Dim; ++c) {
-      const mpq_class d = abs(mpq_class(Q[i][static_cast<int>(c)]) - exact[i][c]);
-      if (d > worst) worst = d;
-    }
-  }
-  return worst;
-}
-
-template <int Dim>
 std::vector<Point<Dim>> to_double(const std::vector<ExactPoint<Dim>>& exact) {
   std::vector<Point<Dim>> result(exact.size());
   for (std::size_t i = 0; i < exact.size(); ++i) {
     for (std::size_t c = 0; c < Dim; ++c) result[i][static_cast<int>(c)] = exact[i][c].get_d();
   }
   return result;
-}
-
-double falling_factorial(int n, int k) {
-  double result = 1.0;
-  for (int j = 0; j < k; ++j) result *= n - j;
-  return result;
-}
-
-template <class F>
-void expect_invalid_input(F&& f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception; expected InvalidInput naming '" << needle << "'";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
 }
 
 // Integer control points: de Casteljau at s = 1/4 or 1/2 only produces short dyadic numbers,
@@ -190,7 +151,7 @@ RC_GTEST_PROP(Subdivision, HalvesJoinWithAllDerivativesEqual, ()) {
   for (int k = 0; k <= n; ++k) {
     // Each side: the halves' control points (gamma_{2n} M) and the derivative's own rounding
     // ((4n + 4k + 8) u), both amplified by n!/(n-k)! 2^k / h^k.
-    const double scale = falling_factorial(n, k) * std::pow(2.0, k) * M / std::pow(h, k);
+    const double scale = reference_falling_factorial(n, k) * std::pow(2.0, k) * M / std::pow(h, k);
     const double tolerance = 2 * (gamma(2 * n) + (4 * n + 4 * k + 8) * kUnit) * scale;
     RC_ASSERT((derivative(left, m, k) - derivative(right, m, k)).cwiseAbs().maxCoeff() <= tolerance);
     RC_ASSERT((derivative(left, m, k) - derivative(curve, m, k)).cwiseAbs().maxCoeff() <= tolerance);
