@@ -194,23 +194,33 @@ std::vector<double> bernstein_all(int n, double t) {
   return out;
 }
 
-std::vector<double> bernstein_all_derivatives(int n, double t, int k) {
+void bernstein_all_derivatives(int n, double t, int k, std::span<double> out) {
   check_degree("bernstein_all_derivatives", n);
   check_parameter("bernstein_all_derivatives", t);
   if (k < 0) throw InvalidInput(detail::message("bernstein_all_derivatives: order ", k, " is negative"));
-  std::vector<double> values(static_cast<std::size_t>(n) + 1, 0.0);
-  if (k > n) return values;
+  if (out.size() < static_cast<std::size_t>(n) + 1) {
+    throw InvalidInput(
+        detail::message("bernstein_all_derivatives: output has ", out.size(), " entries, degree ", n, " needs ", n + 1));
+  }
+  std::fill(out.begin(), out.begin() + n + 1, 0.0);
+  if (k > n) return;
   // d/dt B_i^m = m (B_{i-1}^{m-1} - B_i^{m-1}): start from degree n-k, raise the degree k times.
-  bernstein_recursion(n - k, t, values.data());
+  bernstein_recursion(n - k, t, out.data());
   for (int m = n - k + 1; m <= n; ++m) {
     double previous = 0.0;  // entry i-1 of degree m-1
     for (int i = 0; i < m; ++i) {
-      const double current = values[static_cast<std::size_t>(i)];
-      values[static_cast<std::size_t>(i)] = m * (previous - current);
+      const double current = out[static_cast<std::size_t>(i)];
+      out[static_cast<std::size_t>(i)] = m * (previous - current);
       previous = current;
     }
-    values[static_cast<std::size_t>(m)] = m * previous;
+    out[static_cast<std::size_t>(m)] = m * previous;
   }
+}
+
+std::vector<double> bernstein_all_derivatives(int n, double t, int k) {
+  check_degree("bernstein_all_derivatives", n);
+  std::vector<double> values(static_cast<std::size_t>(n) + 1, 0.0);
+  bernstein_all_derivatives(n, t, k, values);
   return values;
 }
 

@@ -31,6 +31,8 @@ std::vector<double> bernstein_all(int n, double t);
 
 /// The k-th derivatives d^k/dt^k B_i^n(t), i = 0..n (zero for k > n). \throws InvalidInput if k < 0.
 std::vector<double> bernstein_all_derivatives(int n, double t, int k);
+/// The same into `out` (n + 1 entries, no allocation). \throws InvalidInput if k < 0 or out is too small.
+void bernstein_all_derivatives(int n, double t, int k, std::span<double> out);
 
 /// d^k/dt^k B_i^n(t). \throws InvalidInput if n < 0, k < 0 or t is not finite.
 double bernstein_derivative(int n, int i, double t, int k);

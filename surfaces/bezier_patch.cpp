@@ -1,5 +1,7 @@
 #include "surfaces/bezier_patch.h"
 
+#include <algorithm>
+
 #include "core/errors.h"
 #include "curves/degree.h"
 #include "curves/subdivision.h"
@@ -145,18 +147,41 @@ PartialDerivatives<Dim> partial_derivatives(const BezierPatch<Dim>& patch, doubl
   if (order < 0) throw InvalidInput(detail::message("partial_derivatives: order ", order, " is negative"));
   check_parameters("partial_derivatives", u, v);
   PartialDerivatives<Dim> table(order);
-  // Difference the rows once per order in u and reuse them for every order in v.
-  BezierPatch<Dim> in_u = patch;
+  // The rows are differenced once per order in u and reused for every order in v, in place in
+  // two flat nets of stride n + 1 (the same arithmetic as hodograph_points and evaluate, without
+  // a patch per entry: limit normals at poles call this on every sample there).
+  const int n = patch.degree_u();
+  const int m = patch.degree_v();
+  const int stride = n + 1;
+  std::vector<Point<Dim>> in_u = patch.control_points();
+  std::vector<Point<Dim>> in_uv(in_u.size());
+  std::vector<Point<Dim>> line(static_cast<std::size_t>(std::max(n, m)) + 1);
+  std::vector<Point<Dim>> across(static_cast<std::size_t>(m) + 1);
   for (int a = 0; a <= order; ++a) {
-    BezierPatch<Dim> in_uv = in_u;
+    const int du = n - a;
+    if (du >= 0) std::copy(in_u.begin(), in_u.end(), in_uv.begin());
     for (int b = 0; a + b <= order; ++b) {
-      const bool vanishes = a > patch.degree_u() || b > patch.degree_v();
-      table.at(a, b) = vanishes ? Point<Dim>::Zero() : in_uv.evaluate(u, v);
-      if (!vanishes && a + b < order) {
-        in_uv = map_columns(in_uv, [](std::vector<Point<Dim>> c) { return hodograph_points(std::move(c), 1); });
+      const int dv = m - b;
+      if (du < 0 || dv < 0) {
+        table.at(a, b) = Point<Dim>::Zero();
+        continue;
+      }
+      for (int j = 0; j <= dv; ++j) {
+        std::copy_n(in_uv.begin() + stride * j, du + 1, line.begin());
+        across[static_cast<std::size_t>(j)] = de_casteljau<Dim>(line.data(), du, u);
+      }
+      table.at(a, b) = de_casteljau<Dim>(across.data(), dv, v);
+      if (a + b < order) {
+        for (int i = 0; i <= du; ++i) {
+          for (int j = 0; j < dv; ++j) in_uv[i + stride * j] = dv * (in_uv[i + stride * (j + 1)] - in_uv[i + stride * j]);
+        }
       }
     }
-    if (a < order) in_u = map_rows(in_u, [](std::vector<Point<Dim>> r) { return hodograph_points(std::move(r), 1); });
+    if (a < order && du > 0) {
+      for (int j = 0; j <= m; ++j) {
+        for (int i = 0; i < du; ++i) in_u[i + stride * j] = du * (in_u[i + 1 + stride * j] - in_u[i + stride * j]);
+      }
+    }
   }
   return table;
 }

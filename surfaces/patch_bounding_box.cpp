@@ -1,12 +1,15 @@
 #include "surfaces/patch_bounding_box.h"
 
 #include <cmath>
+#include <limits>
 #include <queue>
 
 #include "core/errors.h"
 
 namespace patchwork {
 namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
 
 struct Candidate {
   double upper;  // max of direction . P over the sub-patch's control points
@@ -28,9 +31,10 @@ double max_over_corners(const BezierPatch3& patch, const Vec3& direction) {
                    direction.dot(patch.control_point(0, m)), direction.dot(patch.control_point(n, m))});
 }
 
-// The least upper bound found for max over the surface of direction . F.
-double extreme(const BezierPatch3& patch, const Vec3& direction, double tolerance) {
-  double lower = max_over_corners(patch, direction);
+// The least upper bound found for max over the surface of direction . F, or for the larger of
+// that and lower_bound (a value the caller knows the maximum it wants reaches).
+double extreme(const BezierPatch3& patch, const Vec3& direction, double tolerance, double lower_bound) {
+  double lower = std::max(lower_bound, max_over_corners(patch, direction));
   std::priority_queue<Candidate> queue;
   queue.push({max_over(patch.control_points(), direction), patch, 0});
   for (int steps = 0; steps < 100000; ++steps) {
@@ -62,8 +66,33 @@ Eigen::AlignedBox3d bounding_box(const BezierPatch3& patch, double tolerance) {
   Eigen::AlignedBox3d box;
   for (int c = 0; c < 3; ++c) {
     const Vec3 direction = Vec3::Unit(c);
-    box.max()[c] = extreme(patch, direction, tolerance);
-    box.min()[c] = -extreme(patch, -direction, tolerance);
+    box.max()[c] = extreme(patch, direction, tolerance, -inf);
+    box.min()[c] = -extreme(patch, -direction, tolerance, -inf);
+  }
+  return box;
+}
+
+Eigen::AlignedBox3d bounding_box(std::span<const BezierPatch3> patches, double tolerance) {
+  if (!std::isfinite(tolerance) || !(tolerance > 0.0)) {
+    throw InvalidInput(detail::message("bounding_box: tolerance ", tolerance, " is not positive"));
+  }
+  Eigen::AlignedBox3d box;
+  if (patches.empty()) return box;
+  for (int c = 0; c < 6; ++c) {
+    const Vec3 direction = (c < 3 ? 1.0 : -1.0) * Vec3::Unit(c % 3);
+    // The corners are surface points: their maximum is a lower bound on the set's. A patch
+    // whose control points do not exceed it cannot raise the maximum (convex hull property).
+    double lower = -inf;
+    for (const BezierPatch3& patch : patches) lower = std::max(lower, max_over_corners(patch, direction));
+    double face = lower;
+    for (const BezierPatch3& patch : patches) {
+      if (max_over(patch.control_points(), direction) > lower) face = std::max(face, extreme(patch, direction, tolerance, lower));
+    }
+    if (c < 3) {
+      box.max()[c] = face;
+    } else {
+      box.min()[c % 3] = -face;
+    }
   }
   return box;
 }

@@ -6,6 +6,7 @@
 // the tolerance. The box returned always contains the surface (it is the upper bound).
 
 #include <Eigen/Geometry>
+#include <span>
 
 #include "surfaces/bezier_patch.h"
 
@@ -14,6 +15,11 @@ namespace patchwork {
 /// A box that contains F([0,1]^2) and whose every face is within `tolerance` of the surface's
 /// extreme in that direction. \throws InvalidInput if tolerance is not positive.
 Eigen::AlignedBox3d bounding_box(const BezierPatch3& patch, double tolerance);
+
+/// A box that contains the surface of every patch, each face within `tolerance` of the set's
+/// extreme in that direction (patches that cannot reach past the others' corners are skipped).
+/// \throws InvalidInput if tolerance is not positive. Empty box for no patches.
+Eigen::AlignedBox3d bounding_box(std::span<const BezierPatch3> patches, double tolerance);
 
 /// The box of the control points (contains the surface; not tight).
 Eigen::AlignedBox3d control_box(const BezierPatch3& patch);

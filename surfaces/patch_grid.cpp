@@ -14,8 +14,7 @@ void tabulate(int degree, std::span<const double> ts, std::vector<double>& value
   derivatives.resize(ts.size() * width);
   for (std::size_t k = 0; k < ts.size(); ++k) {
     bernstein_all(degree, ts[k], std::span<double>(values.data() + k * width, width));
-    const std::vector<double> d = bernstein_all_derivatives(degree, ts[k], 1);
-    std::copy(d.begin(), d.end(), derivatives.begin() + static_cast<std::ptrdiff_t>(k * width));
+    bernstein_all_derivatives(degree, ts[k], 1, std::span<double>(derivatives.data() + k * width, width));
   }
 }
 

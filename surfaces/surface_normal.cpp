@@ -61,7 +61,8 @@ Vec3 limit_unit_normal(const PartialDerivatives<3>& F, double u, double v, doubl
 }  // namespace detail
 
 Vec3 normal(const BezierPatch3& patch, double u, double v) {
-  return derivative(patch, u, v, 1, 0).cross(derivative(patch, u, v, 0, 1));
+  const PartialDerivatives<3> F = partial_derivatives(patch, u, v, 1);
+  return F.at(1, 0).cross(F.at(0, 1));
 }
 
 Vec3 normal(const RationalBezierPatch& patch, double u, double v) {

@@ -63,7 +63,7 @@ struct PatchOutput {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;
   std::vector<Vec4> tangents;
-  std::vector<Triangle> kept;     // pattern-local, reordered for the vertex cache
+  std::vector<Triangle> kept;     // pattern-local
   std::vector<Triangle> dropped;  // use one welded point twice (at a collapsed edge)
   double bound = 0.0;
 };
@@ -113,7 +113,10 @@ class Tessellator {
     });
     Tessellation result = assemble();
     if (options_.measure) result.measured_error = measure();
-    if (options_.optimize) optimize_vertex_fetch(result.mesh);
+    if (options_.optimize) {
+      optimize_vertex_cache(result);
+      optimize_vertex_fetch(result.mesh);
+    }
     return result;
   }
 
@@ -380,11 +383,6 @@ class Tessellator {
     }
     out.bound = pattern.grid ? flatness_bound(plans_[p].bounds, 1.0 / nu, 1.0 / nv)
                              : pattern_bound(out.kept, out.dropped, pattern.points, plans_[p].bounds, nu, nv);
-    if (options_.optimize && !out.kept.empty()) {
-      std::vector<Triangle> reordered(out.kept.size());
-      meshopt_optimizeVertexCache(reordered.front().data(), out.kept.front().data(), 3 * out.kept.size(), count);
-      out.kept = std::move(reordered);
-    }
   }
 
   // Positions, normals (and tangents) of every pattern point: the interior as one grid, each
@@ -573,6 +571,51 @@ class Tessellator {
     return errors.empty() ? 0.0 : *std::max_element(errors.begin(), errors.end());
   }
 
+  // Triangles reordered for the vertex cache, in one call over the whole mesh (a call per piece
+  // cost more in set-up than in work once patches are split into 16 pieces), and their patches
+  // along. meshoptimizer keeps each triangle (up to a rotation of its corners): each output
+  // triangle is found among the input triangles with its smallest corner.
+  static void optimize_vertex_cache(Tessellation& result) {
+    RenderMesh& mesh = result.mesh;
+    const std::size_t triangles = mesh.triangle_count();
+    if (triangles == 0) return;
+    std::vector<std::uint32_t> reordered(mesh.indices.size());
+    meshopt_optimizeVertexCacheFifo(reordered.data(), mesh.indices.data(), mesh.indices.size(), mesh.vertex_count(), 16);
+    const auto smallest = [](const std::uint32_t* t) { return std::min({t[0], t[1], t[2]}); };
+    std::vector<std::uint32_t> first(mesh.vertex_count() + 1, 0);  // triangles by smallest corner (CSR)
+    for (std::size_t t = 0; t < triangles; ++t) ++first[smallest(&mesh.indices[3 * t]) + 1];
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) first[v + 1] += first[v];
+    std::vector<std::uint32_t> by_corner(triangles);
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t t = 0; t < triangles; ++t) by_corner[fill[smallest(&mesh.indices[3 * t])]++] = static_cast<std::uint32_t>(t);
+    const auto same = [](const std::uint32_t* a, const std::uint32_t* b) {
+      for (int r = 0; r < 3; ++r) {
+        if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3]) return true;
+      }
+      return false;
+    };
+    std::vector<bool> taken(triangles, false);
+    std::vector<std::uint32_t> patches(triangles);
+    for (std::size_t t = 0; t < triangles; ++t) {
+      const std::uint32_t* corners = &reordered[3 * t];
+      const std::uint32_t v = smallest(corners);
+      std::uint32_t source = no_id;
+      for (std::uint32_t k = first[v]; k < first[v + 1]; ++k) {
+        const std::uint32_t candidate = by_corner[k];
+        if (!taken[candidate] && same(corners, &mesh.indices[3 * std::size_t{candidate}])) {
+          source = candidate;
+          break;
+        }
+      }
+      PATCHWORK_ASSERT(source != no_id, "the vertex-cache order keeps every triangle");
+      if (source == no_id) return;  // (not seen) the mesh stays in its first order, still valid
+      taken[source] = true;
+      patches[t] = result.triangle_patches[source];
+    }
+    mesh.indices = std::move(reordered);
+    result.triangle_patches = std::move(patches);
+  }
+
   // Vertices in order of first use by the (cache-ordered) triangles.
   static void optimize_vertex_fetch(RenderMesh& mesh) {
     if (mesh.indices.empty()) return;
@@ -653,9 +696,7 @@ SecondDerivativeBounds split_bounds(const std::vector<SecondDerivativeBounds>& c
 
 double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {
   if (!tight_diagonal) return set.size();
-  Eigen::AlignedBox3d box;
-  for (const BezierPatch3& patch : set.patches()) box.extend(bounding_box(patch, 1e-6 * set.size()));
-  return box.diagonal().norm();
+  return bounding_box(std::span<const BezierPatch3>(set.patches()), 1e-6 * set.size()).diagonal().norm();
 }
 
 // Pieces of `set`, each patch split k x k (k = 1: the patches themselves).

@@ -541,8 +541,12 @@ TEST(LimitTessellation, CatmullClarkMeetsTheToleranceWeldedAndClosed) {
   for (std::size_t v = 0; v < t.mesh.vertex_count(); ++v) {
     EXPECT_GT(t.mesh.normals[v].dot(t.mesh.positions[v] - centre), 0.0);
   }
-  // Finer tolerance, more triangles, smaller error.
+  // Finer tolerance, more triangles, smaller error (4e-4 under the sanitizers: 1e-4 took 15 s there).
+#ifdef PATCHWORK_ENABLE_ASSERTS
+  options.relative_tolerance = 4e-4;
+#else
   options.relative_tolerance = 1e-4;
+#endif
   const Tessellation finer = tessellate_limit(surface, options);
   EXPECT_GT(finer.mesh.triangle_count(), t.mesh.triangle_count());
   EXPECT_LE(finer.measured_error, finer.tolerance);

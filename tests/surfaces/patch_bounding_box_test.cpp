@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <span>
+#include <vector>
 #include <rapidcheck/gtest.h>
 
 #include "core/errors.h"
@@ -59,9 +61,37 @@ RC_GTEST_PROP(PatchBoundingBox, ContainsSamplesAndIsTight, ()) {
   }
 }
 
+RC_GTEST_PROP(PatchBoundingBox, OfASetIsTheUnionUpToTheTolerance, ()) {
+  // Both boxes are upper bounds within the tolerance of the set's true extremes, so their faces
+  // are within the tolerance of each other; the set's box holds every sample of every patch.
+  const int count = *rc::gen::inRange(1, 5);
+  std::vector<BezierPatch3> patches;
+  for (int k = 0; k < count; ++k) patches.push_back(*testing::random_patch(1, 4));
+  const double tolerance = 1e-7;
+  Eigen::AlignedBox3d joined;
+  for (const BezierPatch3& patch : patches) joined.extend(bounding_box(patch, tolerance));
+  const Eigen::AlignedBox3d box = bounding_box(std::span<const BezierPatch3>(patches), tolerance);
+  for (int c = 0; c < 3; ++c) {
+    RC_ASSERT(std::abs(box.max()[c] - joined.max()[c]) <= tolerance);
+    RC_ASSERT(std::abs(box.min()[c] - joined.min()[c]) <= tolerance);
+  }
+  for (const BezierPatch3& patch : patches) {
+    for (int a = 0; a <= 20; ++a) {
+      for (int b = 0; b <= 20; ++b) {
+        const Vec3 p = patch.evaluate(a / 20.0, b / 20.0);
+        RC_ASSERT(((box.min() - Vec3::Constant(1e-13)).array() <= p.array()).all());
+        RC_ASSERT((p.array() <= (box.max() + Vec3::Constant(1e-13)).array()).all());
+      }
+    }
+  }
+  RC_ASSERT(bounding_box(std::span<const BezierPatch3>(), tolerance).isEmpty());
+}
+
 TEST(PatchBoundingBox, RejectsBadTolerance) {
   const BezierPatch3 patch = testing::bilinear(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0));
   EXPECT_THROW(bounding_box(patch, 0.0), InvalidInput);
+  const std::vector<BezierPatch3> set = {patch};
+  EXPECT_THROW(bounding_box(std::span<const BezierPatch3>(set), -1.0), InvalidInput);
 }
 
 }  // namespace
