@@ -9,6 +9,7 @@
 
 #include "core/assert.h"
 #include "core/errors.h"
+#include "core/huge_pages.h"
 #include "core/parallel.h"
 #include "core/union_find.h"
 #include "surfaces/patch_bounding_box.h"
@@ -60,9 +61,17 @@ struct PatchOutput {
   TessellationPattern pattern;
   std::vector<std::uint32_t> welded;  // per pattern point
   std::vector<bool> owner;            // this patch supplies the welded point's position
+  // Attributes of the pattern points: those before first_interior (corners and sides) here, the
+  // interior grid as evaluated (kept as it came, not copied: at large rates it is most of them).
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;
   std::vector<Vec4> tangents;
+  std::size_t first_interior = 0;
+  PatchGridSamples interior{0, 0, {}, {}, {}};
+
+  const Vec3& position(std::size_t k) const { return k < first_interior ? positions[k] : interior.points[k - first_interior]; }
+  const Vec3& normal(std::size_t k) const { return k < first_interior ? normals[k] : interior.normals[k - first_interior]; }
+  const Vec4& tangent(std::size_t k) const { return k < first_interior ? tangents[k] : interior.tangents[k - first_interior]; }
   std::vector<Triangle> kept;     // pattern-local
   std::vector<Triangle> dropped;  // use one welded point twice (at a collapsed edge)
   double bound = 0.0;
@@ -389,10 +398,14 @@ class Tessellator {
   // side (with its corners) as a one-row grid.
   void evaluate(std::uint32_t p, const PatternRates& r, int nu, int nv, PatchOutput& out) const {
     const std::size_t count = out.pattern.points.size();
-    out.positions.resize(count);
-    out.normals.resize(count);
-    if (options_.tangents) out.tangents.resize(count);
+    // Interior points follow the sides (first_edge_point numbering), row by row as evaluate_grid
+    // stores them.
+    out.first_interior = nu < 2 || nv < 2 ? count : first_edge_point(r, 3) + static_cast<std::size_t>(r.edges[3] - 1);
+    out.positions.resize(out.first_interior);
+    out.normals.resize(out.first_interior);
+    if (options_.tangents) out.tangents.resize(out.first_interior);
     const auto store = [&](const PatchGridSamples& samples, std::size_t sample, std::uint32_t point) {
+      PATCHWORK_ASSERT(point < out.first_interior, "side points come before the interior");
       out.positions[point] = samples.points[sample];
       out.normals[point] = samples.normals[sample];
       if (options_.tangents) out.tangents[point] = samples.tangents[sample];
@@ -426,11 +439,9 @@ class Tessellator {
         store(samples, s, point);
       }
     }
-    if (nu < 2 || nv < 2) return;
-    const PatchGridSamples samples =
-        pieces_.evaluate_grid(p, ramp(1, nu - 1, nu), ramp(1, nv - 1, nv), options_.tangents);
-    const std::uint32_t first = first_edge_point(r, 3) + static_cast<std::uint32_t>(r.edges[3] - 1);
-    for (std::size_t s = 0; s < samples.points.size(); ++s) store(samples, s, first + static_cast<std::uint32_t>(s));
+    if (out.first_interior == count) return;
+    out.interior = pieces_.evaluate_grid(p, ramp(1, nu - 1, nu), ramp(1, nv - 1, nv), options_.tangents);
+    PATCHWORK_ASSERT(out.first_interior + out.interior.points.size() == count, "the interior grid ends the pattern");
   }
 
   // --- assembly -----------------------------------------------------------------------------
@@ -459,10 +470,12 @@ class Tessellator {
     Tessellation result;
     result.culled_patches = culled_;
     result.culled_triangles = culled_triangles_;
-    std::vector<Vec3> welded_positions(welded_count_, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    std::vector<Vec3> welded_positions;
+    reserve_huge(welded_positions, welded_count_);
+    welded_positions.assign(welded_count_, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
     for (const PatchOutput& out : outputs_) {
       for (std::size_t k = 0; k < out.welded.size(); ++k) {
-        if (out.owner[k]) welded_positions[out.welded[k]] = out.positions[k];
+        if (out.owner[k]) welded_positions[out.welded[k]] = out.position(k);
       }
     }
     RenderMesh& mesh = result.mesh;
@@ -472,13 +485,13 @@ class Tessellator {
       points += out.welded.size();
       triangles += out.kept.size();
     }
-    mesh.positions.reserve(points);
-    mesh.normals.reserve(points);
-    if (options_.uv != UvMode::none) mesh.uvs.reserve(points);
-    if (options_.tangents) mesh.tangents.reserve(points);
-    mesh.position_ids.reserve(points);
-    mesh.indices.reserve(3 * triangles);
-    result.triangle_patches.reserve(triangles);
+    reserve_huge(mesh.positions, points);
+    reserve_huge(mesh.normals, points);
+    if (options_.uv != UvMode::none) reserve_huge(mesh.uvs, points);
+    if (options_.tangents) reserve_huge(mesh.tangents, points);
+    reserve_huge(mesh.position_ids, points);
+    reserve_huge(mesh.indices, 3 * triangles);
+    reserve_huge(result.triangle_patches, triangles);
     // Render vertices of one welded point, chained: first_vertex[id] -> next_vertex[...] -> ...
     std::vector<std::uint32_t> first_vertex(welded_count_, no_id);
     std::vector<std::uint32_t> next_vertex;
@@ -498,16 +511,16 @@ class Tessellator {
         const Vec2 uv = uv_of(p, out.pattern.points[k].uv);
         for (std::uint32_t v = first_vertex[id]; v != no_id; v = next_vertex[v]) {
           const bool same =
-              mesh.normals[v].dot(out.normals[k]) >= cos_crease && (!with_uv || mesh.uvs[v] == uv) &&
-              (!options_.tangents || (mesh.tangents[v].w() == out.tangents[k].w() &&
-                                      mesh.tangents[v].head<3>().dot(out.tangents[k].head<3>()) >= cos_crease));
+              mesh.normals[v].dot(out.normal(k)) >= cos_crease && (!with_uv || mesh.uvs[v] == uv) &&
+              (!options_.tangents || (mesh.tangents[v].w() == out.tangent(k).w() &&
+                                      mesh.tangents[v].head<3>().dot(out.tangent(k).head<3>()) >= cos_crease));
           if (same) return vertex_of[k] = v;
         }
         const auto v = static_cast<std::uint32_t>(mesh.positions.size());
         mesh.positions.push_back(welded_positions[id]);
-        mesh.normals.push_back(out.normals[k]);
+        mesh.normals.push_back(out.normal(k));
         if (with_uv) mesh.uvs.push_back(uv);
-        if (options_.tangents) mesh.tangents.push_back(out.tangents[k]);
+        if (options_.tangents) mesh.tangents.push_back(out.tangent(k));
         if (dense_position[id] == no_id) dense_position[id] = positions_used++;
         mesh.position_ids.push_back(dense_position[id]);
         next_vertex.push_back(first_vertex[id]);
@@ -523,6 +536,7 @@ class Tessellator {
       done.positions = {};
       done.normals = {};
       done.tangents = {};
+      done.interior = PatchGridSamples{0, 0, {}, {}, {}};
     }
     result.welded_vertices = positions_used;
     welded_positions_ = std::move(welded_positions);
@@ -579,7 +593,9 @@ class Tessellator {
     RenderMesh& mesh = result.mesh;
     const std::size_t triangles = mesh.triangle_count();
     if (triangles == 0) return;
-    std::vector<std::uint32_t> reordered(mesh.indices.size());
+    std::vector<std::uint32_t> reordered;
+    reserve_huge(reordered, mesh.indices.size());
+    reordered.resize(mesh.indices.size());
     meshopt_optimizeVertexCacheFifo(reordered.data(), mesh.indices.data(), mesh.indices.size(), mesh.vertex_count(), 16);
     const auto smallest = [](const std::uint32_t* t) { return std::min({t[0], t[1], t[2]}); };
     std::vector<std::uint32_t> first(mesh.vertex_count() + 1, 0);  // triangles by smallest corner (CSR)
@@ -624,7 +640,9 @@ class Tessellator {
         meshopt_optimizeVertexFetchRemap(remap.data(), mesh.indices.data(), mesh.indices.size(), mesh.vertex_count());
     const auto apply = [&](auto& attribute) {
       if (attribute.empty()) return;
-      std::remove_reference_t<decltype(attribute)> reordered(used);
+      std::remove_reference_t<decltype(attribute)> reordered;
+      reserve_huge(reordered, used);
+      reordered.resize(used);
       for (std::size_t v = 0; v < attribute.size(); ++v) {
         if (remap[v] != ~0u) reordered[remap[v]] = attribute[v];
       }
