@@ -328,48 +328,87 @@ std::vector<std::uint32_t> weld_equal_positions(const std::vector<Vec3>& positio
 }  // namespace
 
 std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOptions& options) {
-  validate(mesh);
-  if (mesh.triangle_count() == 0) {
-    throw InvalidInput("format_gltf: the mesh has no triangle (glTF accessors hold at least one element)");
+  return format_gltf_levels(std::span<const RenderMesh>(&mesh, 1), {}, format, options);
+}
+
+std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,
+                               const GltfOptions& options) {
+  if (levels.empty()) throw InvalidInput("format_gltf: no mesh to write");
+  if (levels.size() > 1 && coverage.size() != levels.size()) {
+    throw InvalidInput(detail::message("format_gltf: ", levels.size(), " levels of detail need as many screen coverages, got ",
+                                       coverage.size()));
   }
-  if (!mesh.tangents.empty() && mesh.normals.empty()) {
-    throw InvalidInput("format_gltf: the mesh has tangents but no normals (glTF ignores tangents without normals)");
+  for (std::size_t k = 0; k < coverage.size(); ++k) {
+    const double previous = k == 0 ? 1.0 : coverage[k - 1];
+    if (!(coverage[k] >= 0.0 && coverage[k] <= previous)) {
+      throw InvalidInput(detail::message("format_gltf: screen coverage ", k, " (", coverage[k],
+                                         ") is not in [0, 1] and at most the one before"));
+    }
   }
-  // At most 65535 vertices: indices up to 65534, so the restart value 65535 never appears (the
-  // same holds for 32 bits: validate() allows at most 2^32 - 2 vertices).
-  const bool short_indices = mesh.vertex_count() <= 0xffff;
-  const std::uint64_t bytes = buffer_bytes(mesh, short_indices ? 2 : 4);
+  std::uint64_t bytes = 0;
+  for (std::size_t level = 0; level < levels.size(); ++level) {
+    const RenderMesh& mesh = levels[level];
+    validate(mesh);
+    if (mesh.triangle_count() == 0) {
+      throw InvalidInput(detail::message("format_gltf: the mesh of level ", level,
+                                         " has no triangle (glTF accessors hold at least one element)"));
+    }
+    if (!mesh.tangents.empty() && mesh.normals.empty()) {
+      throw InvalidInput("format_gltf: the mesh has tangents but no normals (glTF ignores tangents without normals)");
+    }
+    bytes += buffer_bytes(mesh, mesh.vertex_count() <= 0xffff ? 2 : 4);
+  }
   if (bytes > max_buffer_bytes) {
     throw InvalidInput(detail::message("format_gltf: the buffer would take ", bytes, " bytes, more than a glTF buffer can hold"));
   }
 
   GltfBuilder builder;
-  tinygltf::Primitive primitive;
-  primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  primitive.material = 0;
-  add_attributes(builder, primitive, mesh, options.z_up);
-  if (short_indices) {
-    const std::vector<std::uint16_t> indices(mesh.indices.begin(), mesh.indices.end());
-    primitive.indices = builder.add(indices, 1, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  } else {
-    primitive.indices = builder.add(mesh.indices, 1, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  }
-
   tinygltf::Model& model = builder.model();
   model.asset.version = "2.0";
   model.asset.generator = "patchwork";
   // Not value_or: the topology pass runs only when the caller did not say.
-  model.materials.push_back(default_material(options.double_sided ? *options.double_sided : has_boundary_edge(mesh)));
-  tinygltf::Mesh gltf_mesh;
-  gltf_mesh.name = options.name;
-  gltf_mesh.primitives.push_back(std::move(primitive));
-  model.meshes.push_back(std::move(gltf_mesh));
-  tinygltf::Node node;
-  node.name = options.name;
-  node.mesh = 0;
-  model.nodes.push_back(std::move(node));
+  model.materials.push_back(
+      default_material(options.double_sided ? *options.double_sided : has_boundary_edge(levels.front())));
+  // One mesh and one node per level; the scene holds the first node, which names the others.
+  for (std::size_t level = 0; level < levels.size(); ++level) {
+    const RenderMesh& mesh = levels[level];
+    tinygltf::Primitive primitive;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    primitive.material = 0;
+    add_attributes(builder, primitive, mesh, options.z_up);
+    // At most 65535 vertices: indices up to 65534, so the restart value 65535 never appears (the
+    // same holds for 32 bits: validate() allows at most 2^32 - 2 vertices).
+    if (mesh.vertex_count() <= 0xffff) {
+      const std::vector<std::uint16_t> indices(mesh.indices.begin(), mesh.indices.end());
+      primitive.indices = builder.add(indices, 1, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    } else {
+      primitive.indices = builder.add(mesh.indices, 1, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    }
+    const std::string name = level == 0 ? options.name : detail::message(options.name, "_lod", level);
+    tinygltf::Mesh gltf_mesh;
+    gltf_mesh.name = name;
+    gltf_mesh.primitives.push_back(std::move(primitive));
+    model.meshes.push_back(std::move(gltf_mesh));
+    tinygltf::Node node;
+    node.name = name;
+    node.mesh = static_cast<int>(level);
+    model.nodes.push_back(std::move(node));
+  }
+  if (levels.size() > 1) {
+    tinygltf::Value::Array ids;
+    tinygltf::Value::Array coverages;
+    for (std::size_t level = 1; level < levels.size(); ++level) ids.emplace_back(static_cast<int>(level));
+    for (const double c : coverage) coverages.emplace_back(c);
+    tinygltf::Value::Object lod;
+    lod["ids"] = tinygltf::Value(std::move(ids));
+    model.nodes[0].extensions["MSFT_lod"] = tinygltf::Value(std::move(lod));
+    tinygltf::Value::Object extras;
+    extras["MSFT_screencoverage"] = tinygltf::Value(std::move(coverages));
+    model.nodes[0].extras = tinygltf::Value(std::move(extras));
+    model.extensionsUsed.push_back("MSFT_lod");
+  }
   tinygltf::Scene scene;
   scene.nodes = {0};
   model.scenes.push_back(std::move(scene));
@@ -391,6 +430,12 @@ std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOpt
 void write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options) {
   const GltfFormat format = gltf_format_of(path);
   write_file_atomically(path, format_gltf(mesh, format, options));
+}
+
+void write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
+                       std::span<const double> coverage, const GltfOptions& options) {
+  const GltfFormat format = gltf_format_of(path);
+  write_file_atomically(path, format_gltf_levels(levels, coverage, format, options));
 }
 
 RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path, bool z_up) {

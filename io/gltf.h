@@ -35,6 +35,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -65,11 +66,27 @@ struct GltfOptions {
 ///         normals), a value does not fit in a float, or the buffer would exceed 4 GiB.
 std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOptions& options = {});
 
+/// A level-of-detail chain in one file (glTF's MSFT_lod on nodes): levels[0] is the finest and is
+/// node 0, the one node of the scene; levels[k] is node and mesh k, named "<name>_lod<k>", outside
+/// the scene and listed in node 0's extension "MSFT_lod": {"ids": [1, ..., K]}; node 0's extras
+/// hold "MSFT_screencoverage": coverage, one value per level, the screen coverage down to which
+/// that level is meant to be shown (non-increasing, in [0, 1]; the last is where nothing need be
+/// drawn). All levels share material 0 (doubleSided from levels[0] unless given). A client that
+/// knows no MSFT_lod shows levels[0]. One level gives exactly format_gltf's file.
+/// \throws InvalidInput as format_gltf for any level, for no level, or if more than one level
+///         comes without exactly one coverage per level or with coverages out of order.
+std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,
+                               const GltfOptions& options = {});
+
 /// Writes `mesh` as .glb or .gltf, chosen by the extension (compared without regard to case),
 /// atomically (io/atomic_file.h): a failed write leaves no partial file.
 /// \throws IoError naming the path for another extension or a failed write; InvalidInput as
 ///         format_gltf (nothing written).
 void write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options = {});
+
+/// Writes a level-of-detail chain (format_gltf_levels) as write_gltf writes one mesh.
+void write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
+                       std::span<const double> coverage, const GltfOptions& options = {});
 
 /// Parses the bytes of a .glb or .gltf file (told apart by the "glTF" magic) written by anyone,
 /// holding exactly one mesh primitive, of mode TRIANGLES: POSITION (float), optional NORMAL

@@ -60,6 +60,9 @@ int main(int argc, char** argv) {
                        "One grid per patch (by default patches split 2 x 2 or 4 x 4 where that saves triangles)");
   tessellate->add_option("--crease-angle", tess.crease_angle_degrees,
                          "Split vertices where normals differ by more than this (degrees)");
+  tessellate->add_option("--lod", tess.lod_factors,
+                         "Coarser levels of detail in the glTF file (MSFT_lod), each this factor times the tolerance")
+      ->delimiter(',');
   tessellate->add_flag("--json", tess.json, "Print the summary as JSON");
   tessellate->add_option("--max-triangles", tess.max_triangles, "Refuse to make more triangles than this")
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{2'000'000'000}));

@@ -5,14 +5,18 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <numbers>
 #include <ostream>
+#include <span>
+#include <vector>
 
 #include "core/errors.h"
 #include "io/bpt.h"
 #include "io/gltf.h"
 #include "io/mesh_file.h"
+#include "surfaces/patch_bounding_box.h"
 #include "surfaces/tessellator.h"
 #include "tools/output_files.h"
 
@@ -81,6 +85,33 @@ Camera parse_camera(const std::vector<std::string>& tokens) {
   return camera;
 }
 
+// The meshes of every level, finest first.
+std::vector<RenderMesh> level_meshes(const Tessellation& finest, const std::vector<Tessellation>& coarser) {
+  std::vector<RenderMesh> meshes = {finest.mesh};
+  for (const Tessellation& level : coarser) meshes.push_back(level.mesh);
+  return meshes;
+}
+
+// MSFT_screencoverage: level k is shown down to the coverage at which level k + 1's error is
+// `pixels` pixels on a 1080-pixel-high screen (the surface's box diagonal spanning that fraction
+// of its height); the coarsest level down to 0.
+std::vector<double> screen_coverages(const PatchSet& set, const std::vector<Tessellation>& coarser, double pixels) {
+  if (!(pixels > 0.0) || !std::isfinite(pixels)) {
+    throw InvalidInput(detail::message("--pixel-tolerance ", pixels, " is not positive"));
+  }
+  constexpr double screen_height = 1080.0;
+  const double diagonal =
+      bounding_box(std::span<const BezierPatch3>(set.patches()), 1e-6 * set.size()).diagonal().norm();
+  std::vector<double> coverage;
+  double previous = 1.0;
+  for (const Tessellation& next : coarser) {
+    previous = std::min(previous, pixels * diagonal / (next.tolerance * screen_height));
+    coverage.push_back(previous);
+  }
+  coverage.push_back(0.0);
+  return coverage;
+}
+
 UvMode parse_uv(const std::string& text) {
   if (text == "none") return UvMode::none;
   if (text == "patch") return UvMode::patch;
@@ -109,10 +140,31 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   options.crease_angle = arguments.crease_angle_degrees * std::numbers::pi / 180.0;
   options.max_triangles = arguments.max_triangles;
   if (arguments.threads < 0) throw InvalidInput(detail::message("--threads ", arguments.threads, " is negative"));
+  if (!arguments.lod_factors.empty()) {
+    if (!gltf) throw InvalidInput("--lod: levels of detail need a .glb or .gltf output");
+    if (!arguments.tolerance && !arguments.relative_tolerance) {
+      throw InvalidInput("--lod: levels of detail need --tolerance or --relative-tolerance");
+    }
+    for (std::size_t k = 0; k < arguments.lod_factors.size(); ++k) {
+      const double factor = arguments.lod_factors[k];
+      const double previous = k == 0 ? 1.0 : arguments.lod_factors[k - 1];
+      if (!std::isfinite(factor) || !(factor > previous)) {
+        throw InvalidInput(detail::message("--lod: factor ", factor, " is not finite and larger than ", previous));
+      }
+    }
+  }
 
   const PatchSet set(read_bpt(arguments.input));
   const auto tessellation_start = std::chrono::steady_clock::now();
   const Tessellation result = tessellate(set, options);
+  // Coarser levels of detail, each at its factor times the tolerance.
+  std::vector<Tessellation> coarser;
+  for (const double factor : arguments.lod_factors) {
+    TessellationOptions level = options;
+    if (level.tolerance) *level.tolerance *= factor;
+    if (level.relative_tolerance) *level.relative_tolerance *= factor;
+    coarser.push_back(tessellate(set, level));
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tessellation_start).count();
   if (elapsed() > 1.0) progress << "patchwork: tessellated in " << seconds << " s, writing " << arguments.output << "\n";
   if (gltf) {
@@ -120,7 +172,12 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     // the inside, so such a mesh is double-sided.
     GltfOptions gltf_options;
     gltf_options.double_sided = !set.open_edges().empty();
-    write_gltf(arguments.output, result.mesh, gltf_options);
+    if (coarser.empty()) {
+      write_gltf(arguments.output, result.mesh, gltf_options);
+    } else {
+      write_gltf_levels(arguments.output, level_meshes(result, coarser),
+                        screen_coverages(set, coarser, arguments.pixel_tolerance), gltf_options);
+    }
   } else {
     write_mesh(arguments.output, welded_faces(result.mesh));
   }
@@ -150,6 +207,11 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   }
   out << "  error bound:    " << result.error_bound << " (a priori)\n";
   out << "  measured error: " << result.measured_error << "\n";
+  for (std::size_t k = 0; k < coarser.size(); ++k) {
+    out << "  level " << k + 1 << ":        " << coarser[k].mesh.triangle_count() << " triangles, tolerance "
+        << coarser[k].tolerance << ", bound " << coarser[k].error_bound << ", measured " << coarser[k].measured_error
+        << "\n";
+  }
 }
 
 }  // namespace patchwork::tools

@@ -1,13 +1,20 @@
 #pragma once
 // `patchwork tessellate IN.bpt -o OUT.(glb|gltf|obj|off|ply) (--tolerance E |
 // --relative-tolerance R | --segments N | --camera ... --pixel-tolerance T) [--threads T]
-// [--uv none|patch|atlas] [--tangents] [--no-split] [--crease-angle DEG] [--json]`.
+// [--uv none|patch|atlas] [--tangents] [--no-split] [--crease-angle DEG] [--lod F1,F2,...] [--json]`.
 //
 // Prints patches, triangles, vertices, seconds (the tessellation alone), the absolute tolerance,
 // the a-priori error bound, the measured error and the culled patches; with --json one object
 // with exactly the keys patches, triangles, vertices, seconds, tolerance, error_bound,
 // measured_error, culled_patches. OBJ, OFF and PLY get the welded triangles (positions only);
 // glTF gets the render mesh (normals, UVs, tangents).
+//
+// --lod F1,F2,... adds coarser levels of detail to a glTF file (MSFT_lod, io/gltf.h): level k is
+// tessellated at F_k times the tolerance. Each level's screen coverage hint is where the next
+// level's error is --pixel-tolerance pixels (0.5 by default) on a screen 1080 pixels high when
+// the surface's box diagonal spans that fraction of it: coverage_k = tau D / (eps_{k+1} 1080),
+// clamped to 1, and 0 for the coarsest level. The summary lists every level; the JSON object
+// speaks of level 0 (its keys do not change).
 
 #include <cstdint>
 #include <iosfwd>
@@ -31,6 +38,9 @@ struct TessellateArguments {
   bool tangents = false;
   bool no_split = false;
   double crease_angle_degrees = 1.0;
+  /// Coarser levels of detail: level k at lod_factors[k-1] times the tolerance (increasing,
+  /// each > 1); glTF output only, with --tolerance or --relative-tolerance.
+  std::vector<double> lod_factors;
   bool json = false;
   /// Refuse above this many triangles (the message gives the count needed).
   std::int64_t max_triangles = 100'000'000;

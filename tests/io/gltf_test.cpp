@@ -13,6 +13,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -418,6 +419,43 @@ TEST(Gltf, SceneAndMaterialAreTheDefaults) {
   EXPECT_EQ(document["materials"][0].value("alphaMode", "OPAQUE"), "OPAQUE");
 }
 
+TEST(Gltf, LevelsOfDetailAreNodesNamedByTheFirstNodesMsftLod) {
+  const std::vector<RenderMesh> levels = {grid(8, 8), grid(4, 4), cube()};
+  const std::vector<double> coverage = {0.5, 0.125, 0.0};
+  GltfOptions options;
+  options.name = "teapot";
+  const json document = json::parse(format_gltf_levels(levels, coverage, GltfFormat::gltf, options));
+  EXPECT_EQ(document["scenes"], json::parse(R"([{"nodes": [0]}])"));
+  EXPECT_EQ(document["extensionsUsed"], json::parse(R"(["MSFT_lod"])"));
+  EXPECT_FALSE(document.contains("extensionsRequired"));  // a client without MSFT_lod shows level 0
+  ASSERT_EQ(document["nodes"].size(), 3u);
+  EXPECT_EQ(document["nodes"][0]["extensions"]["MSFT_lod"]["ids"], json::parse("[1, 2]"));
+  EXPECT_EQ(document["nodes"][0]["extras"]["MSFT_screencoverage"], json::parse("[0.5, 0.125, 0.0]"));
+  EXPECT_EQ(document["nodes"][1], json::parse(R"({"mesh": 1, "name": "teapot_lod1"})"));
+  EXPECT_EQ(document["nodes"][2], json::parse(R"({"mesh": 2, "name": "teapot_lod2"})"));
+  ASSERT_EQ(document["meshes"].size(), 3u);
+  for (std::size_t level = 0; level < levels.size(); ++level) {
+    const json& primitive = document["meshes"][level]["primitives"][0];
+    EXPECT_EQ(primitive["material"], 0);
+    EXPECT_EQ(document["accessors"][primitive["attributes"]["POSITION"].get<int>()]["count"], levels[level].vertex_count());
+    EXPECT_EQ(document["accessors"][primitive["indices"].get<int>()]["count"], levels[level].indices.size());
+  }
+  EXPECT_EQ(document["materials"].size(), 1u);
+  // One level is exactly the one-mesh file.
+  EXPECT_EQ(format_gltf_levels(std::span<const RenderMesh>(levels.data(), 1), {}, GltfFormat::glb),
+            format_gltf(levels[0], GltfFormat::glb));
+  // Bad chains are refused.
+  const std::vector<double> rising = {0.1, 0.5, 0.0};
+  const std::vector<double> short_list = {0.5, 0.0};
+  const std::vector<double> above_one = {1.5, 0.1, 0.0};
+  for (const auto* bad : {&rising, &short_list, &above_one}) {
+    EXPECT_THROW(format_gltf_levels(levels, *bad, GltfFormat::glb), InvalidInput);
+  }
+  EXPECT_THROW(format_gltf_levels({}, {}, GltfFormat::glb), InvalidInput);
+  const std::vector<RenderMesh> with_empty = {cube(), RenderMesh{}};
+  EXPECT_THROW(format_gltf_levels(with_empty, std::vector<double>{0.5, 0.0}, GltfFormat::glb), InvalidInput);
+}
+
 TEST(Gltf, ZUpIsWrittenAsYUpKeepingTheWinding) {
   const RenderMesh mesh = cube();
   const std::string bytes = format_gltf(mesh, GltfFormat::glb);
@@ -611,6 +649,15 @@ TEST_F(GltfFile, KhronosValidatorReportsNoErrorAndNoWarning) {
     EXPECT_EQ(status, 0) << report;
     EXPECT_NE(report.find("0 errors, 0 warnings"), std::string::npos) << report;
     std::cout << report;
+  }
+  // A level-of-detail chain (MSFT_lod): the validator does not know the extension (an info).
+  const std::vector<RenderMesh> levels = {grid(8, 8), grid(4, 4), cube()};
+  for (const std::string name : {"lod.glb", "lod.gltf"}) {
+    SCOPED_TRACE(name);
+    write_gltf_levels(file(name), levels, std::vector<double>{0.5, 0.125, 0.0});
+    const auto [status, report] = validate_file(file(name));
+    EXPECT_EQ(status, 0) << report;
+    EXPECT_NE(report.find("0 errors, 0 warnings"), std::string::npos) << report;
   }
   // The check can fail: a wrong POSITION max is an error, tangents without normals a warning.
   const auto [error_status, error_report] = validate_file(edited(cube(), [](json& d) {

@@ -91,6 +91,36 @@ TEST(Cli, TessellatePrintsExactlyThePromisedJsonAndWritesValidGltf) {
   }
 }
 
+TEST(Cli, TessellateWritesALevelOfDetailChain) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path gltf = folder.path() / "teapot.gltf";
+  const CliRun run =
+      patchwork(folder, "tessellate " + teapot + " -o " + quote(gltf.string()) + " --relative-tolerance 1e-3 --lod 4,16");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("level 2:"), std::string::npos) << run.out;
+  std::ifstream in(gltf);
+  const nlohmann::json document = nlohmann::json::parse(in);
+  ASSERT_EQ(document["nodes"].size(), 3u);
+  EXPECT_EQ(document["nodes"][0]["extensions"]["MSFT_lod"]["ids"], nlohmann::json::parse("[1, 2]"));
+  // Coverage where the next level's error is half a pixel on 1080 rows: 0.5 D / (eps 1080),
+  // eps = r D, so 0.5 / (r 1080) for r = 4e-3 and 1.6e-2 (the box diagonal D cancels).
+  const nlohmann::json& coverage = document["nodes"][0]["extras"]["MSFT_screencoverage"];
+  ASSERT_EQ(coverage.size(), 3u);
+  EXPECT_NEAR(coverage[0].get<double>(), 0.5 / (4e-3 * 1080), 1e-9);
+  EXPECT_NEAR(coverage[1].get<double>(), 0.5 / (1.6e-2 * 1080), 1e-9);
+  EXPECT_EQ(coverage[2].get<double>(), 0.0);
+  // Coarser levels have fewer triangles.
+  std::vector<std::int64_t> triangles;
+  for (const auto& mesh : document["meshes"]) {
+    triangles.push_back(document["accessors"][mesh["primitives"][0]["indices"].get<int>()]["count"].get<std::int64_t>() / 3);
+  }
+  ASSERT_EQ(triangles.size(), 3u);
+  EXPECT_GT(triangles[0], triangles[1]);
+  EXPECT_GT(triangles[1], triangles[2]);
+  if (!validator_available()) GTEST_SKIP() << "node or tools/gltf-validate/node_modules missing: not validated";
+  EXPECT_TRUE(validates(gltf));
+}
+
 TEST(Cli, TessellateToAMeshFormatKeepsThePatchSetsTopology) {
   const testing::TemporaryDirectory folder("patchwork_cli_test");
   const fs::path obj = folder.path() / "teapot.obj";
@@ -200,7 +230,11 @@ TEST(Cli, BadInputFailsWithOneLineAndWritesNothing) {
         "tessellate " + teapot + o + " --segments 0",
         "tessellate " + teapot + " -o " + quote((folder.path() / "no" / "such" / "folder.glb").string()) + " --segments 2",
         "tessellate " + teapot + " -o " + quote((folder.path() / "teapot.stl").string()) + " --segments 2",
-        "tessellate " + teapot + o + " --camera eye=0,0,0 target=0,0,0 fov=40 width=10 height=10"}) {
+        "tessellate " + teapot + o + " --camera eye=0,0,0 target=0,0,0 fov=40 width=10 height=10",
+        "tessellate " + teapot + o + " --relative-tolerance 1e-2 --lod 0.5",
+        "tessellate " + teapot + o + " --relative-tolerance 1e-2 --lod 4,2",
+        "tessellate " + teapot + o + " --segments 4 --lod 2",
+        "tessellate " + teapot + " -o " + quote((folder.path() / "teapot.obj").string()) + " --tolerance 0.1 --lod 2"}) {
     const CliRun run = patchwork(folder, arguments);
     EXPECT_EQ(run.exit_code, 1) << arguments;
     EXPECT_EQ(lines(run.err), 1) << arguments << "\n" << run.err;
