@@ -3,7 +3,7 @@
 // --relative-tolerance R | --segments N | --camera ... --pixel-tolerance T) [--threads T]
 // [--uv none|patch|atlas] [--tangents] [--no-split] [--crease-angle DEG] [--lod F1,F2,...] [--json]`.
 //
-// Prints patches, triangles, vertices, seconds (the tessellation alone), the absolute tolerance,
+// Prints patches, triangles, vertices, seconds (the tessellation alone, every level with --lod), the absolute tolerance,
 // the a-priori error bound, the measured error and the culled patches; with --json one object
 // with exactly the keys patches, triangles, vertices, seconds, tolerance, error_bound,
 // measured_error, culled_patches. OBJ, OFF and PLY get the welded triangles (positions only);
