@@ -231,8 +231,9 @@ std::string why_missed(const Ratios& ratios, const std::vector<Method>& methods)
   if (missed("fewer triangles than Open CASCADE")) {
     out << "Why not fewer triangles than Open CASCADE everywhere: at coarse levels BRepMesh places nodes where each"
         << " face bends, while patchwork gives every patch one uniform grid (stitched to its neighbours' rates); a"
-        << " patch whose curvature varies needs its worst part's rate everywhere. Splitting patches where that saves"
-        << " triangles is not done yet.\n\n";
+        << " patch whose curvature varies needs its worst part's rate everywhere. Patches are split 2 x 2 or 4 x 4"
+        << " only where the a-priori count says that saves triangles, all patches alike, which at coarse levels it"
+        << " does not.\n\n";
   }
   return out.str();
 }
