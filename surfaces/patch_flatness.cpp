@@ -3,33 +3,194 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
 
 namespace patchwork {
 
-SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch) {
-  const int n = patch.degree_u();
-  const int m = patch.degree_v();
-  double uu = 0.0;
-  double uv = 0.0;
-  double vv = 0.0;
+namespace {
+
+// A net of degrees (n, m), P_ij at i + (n + 1) j, raised by one degree in u (transposed: in v).
+std::vector<Vec3> raised_in_u(const std::vector<Vec3>& net, int n, int m) {
+  std::vector<Vec3> raised(static_cast<std::size_t>((n + 2) * (m + 1)));
+  for (int j = 0; j <= m; ++j) {
+    for (int i = 0; i <= n + 1; ++i) {
+      const double a = static_cast<double>(i) / (n + 1);
+      const Vec3 left = i > 0 ? net[static_cast<std::size_t>(i - 1 + (n + 1) * j)] : Vec3::Zero();
+      const Vec3 right = i <= n ? net[static_cast<std::size_t>(i + (n + 1) * j)] : Vec3::Zero();
+      raised[static_cast<std::size_t>(i + (n + 2) * j)] = a * left + (1.0 - a) * right;
+    }
+  }
+  return raised;
+}
+
+std::vector<Vec3> raised_in_v(const std::vector<Vec3>& net, int n, int m) {
+  std::vector<Vec3> raised(static_cast<std::size_t>((n + 1) * (m + 2)));
+  for (int j = 0; j <= m + 1; ++j) {
+    const double a = static_cast<double>(j) / (m + 1);
+    for (int i = 0; i <= n; ++i) {
+      const Vec3 below = j > 0 ? net[static_cast<std::size_t>(i + (n + 1) * (j - 1))] : Vec3::Zero();
+      const Vec3 above = j <= m ? net[static_cast<std::size_t>(i + (n + 1) * j)] : Vec3::Zero();
+      raised[static_cast<std::size_t>(i + (n + 1) * j)] = a * below + (1.0 - a) * above;
+    }
+  }
+  return raised;
+}
+
+// The norm and directional bounds of the patch with net `at(i, j)` of degrees (n, m).
+template <class Net>
+SecondDerivativeBounds bounds_of_net(const Net& net_at, int n, int m) {
+  std::vector<Vec3> points(static_cast<std::size_t>((n + 1) * (m + 1)));
+  for (int j = 0; j <= m; ++j) {
+    for (int i = 0; i <= n; ++i) points[static_cast<std::size_t>(i + (n + 1) * j)] = net_at(i, j);
+  }
+  const auto at = [&](int i, int j) -> const Vec3& { return points[static_cast<std::size_t>(i + (n + 1) * j)]; };
+  // The nets of F_uu (n-2, m), F_uv (n-1, m-1) and F_vv (n, m-2), each raised to (n, m).
+  std::array<std::vector<Vec3>, 3> h;
+  double uu = 0.0, uv = 0.0, vv = 0.0;
+  if (n >= 2) {
+    std::vector<Vec3> net;
+    for (int j = 0; j <= m; ++j) {
+      for (int i = 0; i + 2 <= n; ++i) {
+        net.push_back(n * (n - 1.0) * (at(i + 2, j) - 2.0 * at(i + 1, j) + at(i, j)));
+        uu = std::max(uu, net.back().norm());
+      }
+    }
+    h[0] = raised_in_u(raised_in_u(net, n - 2, m), n - 1, m);
+  }
+  if (n >= 1 && m >= 1) {
+    std::vector<Vec3> net;
+    for (int j = 0; j + 1 <= m; ++j) {
+      for (int i = 0; i + 1 <= n; ++i) {
+        net.push_back(static_cast<double>(n) * m * (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j)));
+        uv = std::max(uv, net.back().norm());
+      }
+    }
+    h[1] = raised_in_v(raised_in_u(net, n - 1, m - 1), n, m - 1);
+  }
+  if (m >= 2) {
+    std::vector<Vec3> net;
+    for (int j = 0; j + 2 <= m; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        net.push_back(m * (m - 1.0) * (at(i, j + 2) - 2.0 * at(i, j + 1) + at(i, j)));
+        vv = std::max(vv, net.back().norm());
+      }
+    }
+    h[2] = raised_in_v(raised_in_v(net, n, m - 2), n, m - 1);
+  }
+  DirectionalBounds d{};
+  const auto count = static_cast<std::size_t>((n + 1) * (m + 1));
+  for (int a = 0; a < 3; ++a) {
+    for (int b = a; b < 3; ++b) {
+      double high = 0.0;
+      double low = 0.0;
+      if (!h[a].empty() && !h[b].empty()) {
+        high = -std::numeric_limits<double>::infinity();
+        low = std::numeric_limits<double>::infinity();
+        for (std::size_t c = 0; c < count; ++c) {
+          const double g = h[a][c].dot(h[b][c]);
+          high = std::max(high, g);
+          low = std::min(low, g);
+        }
+      }
+      d.gram_max[a][b] = d.gram_max[b][a] = high;
+      d.gram_min[a][b] = d.gram_min[b][a] = low;
+    }
+  }
+  // Third differences: F_uuu, F_uuv, F_uvv, F_vvv lie in the hulls of their scaled nets.
+  d.third = {0.0, 0.0, 0.0, 0.0};
   for (int j = 0; j <= m; ++j) {
     for (int i = 0; i <= n; ++i) {
-      const Vec3& p = patch.control_point(i, j);
-      if (i + 2 <= n)
-        uu = std::max(uu, (patch.control_point(i + 2, j) - 2.0 * patch.control_point(i + 1, j) + p).norm());
-      if (j + 2 <= m)
-        vv = std::max(vv, (patch.control_point(i, j + 2) - 2.0 * patch.control_point(i, j + 1) + p).norm());
-      if (i + 1 <= n && j + 1 <= m) {
-        uv = std::max(
-            uv, (patch.control_point(i + 1, j + 1) - patch.control_point(i + 1, j) - patch.control_point(i, j + 1) + p)
-                    .norm());
+      if (i + 3 <= n) {
+        d.third[0] = std::max(d.third[0], n * (n - 1.0) * (n - 2.0) *
+                                              (at(i + 3, j) - 3.0 * at(i + 2, j) + 3.0 * at(i + 1, j) - at(i, j)).norm());
+      }
+      if (i + 2 <= n && j + 1 <= m) {
+        const Vec3 d2 = (at(i + 2, j + 1) - 2.0 * at(i + 1, j + 1) + at(i, j + 1)) -
+                        (at(i + 2, j) - 2.0 * at(i + 1, j) + at(i, j));
+        d.third[1] = std::max(d.third[1], n * (n - 1.0) * m * d2.norm());
+      }
+      if (i + 1 <= n && j + 2 <= m) {
+        const Vec3 d2 = (at(i + 1, j + 2) - 2.0 * at(i + 1, j + 1) + at(i + 1, j)) -
+                        (at(i, j + 2) - 2.0 * at(i, j + 1) + at(i, j));
+        d.third[2] = std::max(d.third[2], n * m * (m - 1.0) * d2.norm());
+      }
+      if (j + 3 <= m) {
+        d.third[3] = std::max(d.third[3], m * (m - 1.0) * (m - 2.0) *
+                                              (at(i, j + 3) - 3.0 * at(i, j + 2) + 3.0 * at(i, j + 1) - at(i, j)).norm());
       }
     }
   }
-  return {n * (n - 1.0) * uu, static_cast<double>(n) * m * uv, m * (m - 1.0) * vv};
+  return {uu, uv, vv, d};
+}
+
+// The directional bound (file comment) for a triangle of parameter extents du, dv; `mixed` is
+// the sign of m_2 when known (+1 or -1), else 0.
+double directional_bound(const DirectionalBounds& d, double du, double dv, int mixed) {
+  const double m0 = du * du / 4.0;
+  const double m1 = du * dv / 2.0;
+  const double m2 = dv * dv / 4.0;
+  // Terms w_a w_b G_ab of sum_ab w_a w_b G_ab that do not depend on the sign of w_1 = +-m1.
+  const double t00 = m0 * m0 * d.gram_max[0][0];
+  const double t11 = m1 * m1 * d.gram_max[1][1];
+  const double t22 = m2 * m2 * d.gram_max[2][2];
+  const double t02 = m0 * m2 * d.gram_max[0][2];
+  double q = std::max({t00, t11, t22, t00 + t22 + 2.0 * t02});
+  for (int sign : {1, -1}) {
+    if (mixed != 0 && sign != mixed) continue;
+    const double t01 = m0 * m1 * (sign > 0 ? d.gram_max[0][1] : -d.gram_min[0][1]);
+    const double t12 = m1 * m2 * (sign > 0 ? d.gram_max[1][2] : -d.gram_min[1][2]);
+    // The corners of the box of m with m_1 in use (each other m_i zero or at its extreme).
+    q = std::max({q, t00 + t11 + 2.0 * t01, t11 + t22 + 2.0 * t12, t00 + t11 + t22 + 2.0 * (t01 + t02 + t12)});
+  }
+  // sum_k lambda_k |d_ku|^3 <= du^3 / 8 on any triangle (|x - mean|^3 is convex: the extreme
+  // distribution on an interval puts half its weight at each end), and by a^2 b <= (2a^3 + b^3)/3
+  // the mixed third-order terms split into pure ones.
+  const std::array<double, 4>& t = d.third;
+  const double third = ((t[0] + 2.0 * t[1] + t[2]) * du * du * du + (t[1] + 2.0 * t[2] + t[3]) * dv * dv * dv) / 48.0;
+  return 0.5 * std::sqrt(q) + third;
+}
+
+}  // namespace
+
+SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch) {
+  return bounds_of_net([&](int i, int j) -> const Vec3& { return patch.control_point(i, j); }, patch.degree_u(),
+                       patch.degree_v());
+}
+
+SecondDerivativeBounds merged_bounds(const SecondDerivativeBounds& a, const SecondDerivativeBounds& b) {
+  SecondDerivativeBounds merged{std::max(a.uu, b.uu), std::max(a.uv, b.uv), std::max(a.vv, b.vv)};
+  if (a.directions && b.directions) {
+    DirectionalBounds d = *a.directions;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        d.gram_max[i][j] = std::max(d.gram_max[i][j], b.directions->gram_max[i][j]);
+        d.gram_min[i][j] = std::min(d.gram_min[i][j], b.directions->gram_min[i][j]);
+      }
+    }
+    for (int k = 0; k < 4; ++k) d.third[k] = std::max(d.third[k], b.directions->third[k]);
+    merged.directions = d;
+  }
+  return merged;
+}
+
+SecondDerivativeBounds scaled_bounds(const SecondDerivativeBounds& bounds, double size) {
+  const double s2 = size * size;
+  SecondDerivativeBounds scaled{s2 * bounds.uu, s2 * bounds.uv, s2 * bounds.vv};
+  if (bounds.directions) {
+    DirectionalBounds d = *bounds.directions;
+    for (auto* gram : {&d.gram_max, &d.gram_min}) {
+      for (auto& row : *gram) {
+        for (double& g : row) g *= s2 * s2;
+      }
+    }
+    for (double& t : d.third) t *= s2 * size;
+    scaled.directions = d;
+  }
+  return scaled;
 }
 
 namespace {
@@ -79,7 +240,6 @@ std::vector<SecondDerivativeBounds> piece_second_derivative_bounds(const BezierP
     sv.push_back(segment_matrix(m, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces).transpose());
   }
   std::vector<SecondDerivativeBounds> bounds(static_cast<std::size_t>(pieces) * static_cast<std::size_t>(pieces));
-  const double scale = static_cast<double>(pieces) * pieces;
   std::array<Eigen::MatrixXd, 3> row;
   std::array<Eigen::MatrixXd, 3> piece;
   for (int b = 0; b < pieces; ++b) {
@@ -87,29 +247,17 @@ std::vector<SecondDerivativeBounds> piece_second_derivative_bounds(const BezierP
     for (int a = 0; a < pieces; ++a) {
       for (int c = 0; c < 3; ++c) piece[c].noalias() = su[static_cast<std::size_t>(a)] * row[c];
       const auto at = [&](int i, int j) { return Vec3(piece[0](i, j), piece[1](i, j), piece[2](i, j)); };
-      double uu = 0.0;
-      double uv = 0.0;
-      double vv = 0.0;
-      for (int j = 0; j <= m; ++j) {
-        for (int i = 0; i <= n; ++i) {
-          if (i + 2 <= n) uu = std::max(uu, (at(i + 2, j) - 2.0 * at(i + 1, j) + at(i, j)).norm());
-          if (j + 2 <= m) vv = std::max(vv, (at(i, j + 2) - 2.0 * at(i, j + 1) + at(i, j)).norm());
-          if (i + 1 <= n && j + 1 <= m)
-            uv = std::max(uv, (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j)).norm());
-        }
-      }
-      bounds[static_cast<std::size_t>(a + pieces * b)] = {
-          scale * n * (n - 1.0) * uu, scale * static_cast<double>(n) * m * uv, scale * m * (m - 1.0) * vv};
+      // The piece's own bounds, then in the patch's parameters (a domain `pieces` times as wide).
+      bounds[static_cast<std::size_t>(a + pieces * b)] = scaled_bounds(bounds_of_net(at, n, m), pieces);
     }
   }
   return bounds;
 }
 
 SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int pieces) {
-  SecondDerivativeBounds M{0.0, 0.0, 0.0};
-  for (const SecondDerivativeBounds& piece : piece_second_derivative_bounds(patch, pieces)) {
-    M = {std::max(M.uu, piece.uu), std::max(M.uv, piece.uv), std::max(M.vv, piece.vv)};
-  }
+  const std::vector<SecondDerivativeBounds> all = piece_second_derivative_bounds(patch, pieces);
+  SecondDerivativeBounds M = all.front();
+  for (const SecondDerivativeBounds& piece : all) M = merged_bounds(M, piece);
   return M;
 }
 
@@ -117,7 +265,9 @@ double flatness_bound(const SecondDerivativeBounds& M, double du, double dv) {
   if (!(du > 0.0 && du <= 1.0 && dv > 0.0 && dv <= 1.0)) {
     throw InvalidInput(detail::message("flatness_bound: steps (", du, ", ", dv, ") are not in (0, 1]"));
   }
-  return (M.uu * du * du + 2.0 * M.uv * du * dv + M.vv * dv * dv) / 8.0;
+  const double norms = (M.uu * du * du + 2.0 * M.uv * du * dv + M.vv * dv * dv) / 8.0;
+  // Grid triangles have their vertices ordered alike in u and v: m_2 >= 0.
+  return M.directions ? std::min(norms, directional_bound(*M.directions, du, dv, 1)) : norms;
 }
 
 double triangle_flatness_bound(const SecondDerivativeBounds& M, const Vec2& p0, const Vec2& p1, const Vec2& p2,
@@ -138,7 +288,20 @@ double triangle_flatness_bound(const SecondDerivativeBounds& M, const Vec2& p0, 
     const double cross = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
     if (cross != 0.0) r2 = ab * bc * ca / (4.0 * cross * cross);
   }
-  return r2 / 2.0;
+  const double norms = r2 / 2.0;
+  if (!M.directions) return norms;
+  const Vec2 low = p0.cwiseMin(p1).cwiseMin(p2);
+  const Vec2 high = p0.cwiseMax(p1).cwiseMax(p2);
+  // The covariance of u and v under any weights has the sign that all vertex pairs share.
+  int positive = 0;
+  int negative = 0;
+  for (const auto& [x, y] : {std::pair{&p0, &p1}, std::pair{&p1, &p2}, std::pair{&p2, &p0}}) {
+    const double product = (x->x() - y->x()) * (x->y() - y->y());
+    positive += product > 0.0;
+    negative += product < 0.0;
+  }
+  const int mixed = negative == 0 ? 1 : positive == 0 ? -1 : 0;
+  return std::min(norms, directional_bound(*M.directions, high.x() - low.x(), high.y() - low.y(), mixed));
 }
 
 double sampled_grid_distance(const BezierPatch3& patch, std::int64_t nu, std::int64_t nv, int samples) {
@@ -173,52 +336,48 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance) {
     throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " is not positive and finite"));
   }
   constexpr std::int64_t limit = std::int64_t{1} << 20;
-  const double e = 8.0 * tolerance;
-  // For each N_u with M_uu du^2 < 8 eps, the smallest N_v solves
-  // M_vv dv^2 + 2 M_uv du dv - (8 eps - M_uu du^2) <= 0 for dv = 1/N_v.
-  const auto segments_v_for = [&](std::int64_t nu) -> std::int64_t {
-    const double du = 1.0 / static_cast<double>(nu);
-    const double room = e - M.uu * du * du;
-    if (room <= 0.0) return -1;
-    const double b = M.uv * du;
-    double dv;
-    if (M.vv > 0.0) {
-      dv = (-b + std::sqrt(b * b + M.vv * room)) / M.vv;
-    } else if (b > 0.0) {
-      dv = room / (2.0 * b);
-    } else {
-      return 1;
-    }
-    double nv = std::max(1.0, std::ceil(1.0 / dv));
-    if (nv > static_cast<double>(limit)) return -1;
-    auto count = static_cast<std::int64_t>(nv);
-    while (count > 1 && flatness_bound(M, du, 1.0 / static_cast<double>(count - 1)) <= tolerance) --count;
-    while (flatness_bound(M, du, 1.0 / static_cast<double>(count)) > tolerance) ++count;
-    return count;
+  // The bound falls as either rate grows (both the norm and the directional bound do), so the
+  // smallest rates are found by bisection and the fewest cells by one walk along N_u.
+  const auto meets = [&](std::int64_t nu, std::int64_t nv) {
+    return flatness_bound(M, 1.0 / static_cast<double>(nu), 1.0 / static_cast<double>(nv)) <= tolerance;
   };
-  const double smallest_u = M.uu > 0.0 ? std::sqrt(M.uu / e) : 1.0;
-  // Compared as a double first: beyond 2^63 the conversion would be undefined behaviour.
-  if (!(std::floor(smallest_u) <= static_cast<double>(limit))) {
+  if (!meets(limit, limit)) {
     throw InvalidInput(
-        detail::message("grid_for_tolerance: tolerance ", tolerance, " needs more than 2^20 segments in u"));
+        detail::message("grid_for_tolerance: tolerance ", tolerance, " needs more than 2^20 segments per side"));
   }
-  const std::int64_t first = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(smallest_u)));
-  // N_v cannot drop below what M_vv alone needs; once it is there, larger N_u only costs.
-  const auto floor_v = static_cast<std::int64_t>(
-      std::clamp(std::ceil(std::sqrt(M.vv / e) - 1e-9), 1.0, static_cast<double>(limit) + 1.0));
+  // The smallest x in [1, high] with ok(x), given ok(high): doubling from 1, then bisection (the
+  // answers are small next to 2^20, and each test is a bound).
+  const auto smallest = [](std::int64_t high, const auto& ok) {
+    std::int64_t low = 1;
+    for (std::int64_t step = 1; step < high; step *= 2) {
+      if (ok(step)) {
+        high = step;
+        break;
+      }
+      low = step + 1;
+    }
+    while (low < high) {
+      const std::int64_t mid = low + (high - low) / 2;
+      if (ok(mid)) {
+        high = mid;
+      } else {
+        low = mid + 1;
+      }
+    }
+    return high;
+  };
+  const std::int64_t first = smallest(limit, [&](std::int64_t nu) { return meets(nu, limit); });
+  // N_v cannot drop below what it needs at the finest N_u; once it is there, larger N_u only costs.
+  const std::int64_t floor_v = smallest(limit, [&](std::int64_t nv) { return meets(limit, nv); });
   GridSize best{-1, -1};
-  // The product N_u N_v is searched over N_u from its minimum up to where it cannot improve.
+  std::int64_t nv = limit;  // meets(nu, nv) holds for every nu >= first
   for (std::int64_t nu = first; nu <= limit; ++nu) {
-    const std::int64_t nv = segments_v_for(nu);
-    if (nv < 0) continue;
+    if (nv > 1 && meets(nu, nv - 1)) nv = smallest(nv - 1, [&](std::int64_t v) { return meets(nu, v); });
     const bool better = best.segments_u < 0 || nu * nv < best.segments_u * best.segments_v ||
                         (nu * nv == best.segments_u * best.segments_v &&
                          std::abs(nu - nv) < std::abs(best.segments_u - best.segments_v));
     if (better) best = {nu, nv};
     if (nv <= floor_v || nu >= best.segments_u * best.segments_v) break;
-  }
-  if (best.segments_u < 0) {
-    throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " needs more than 2^20 segments"));
   }
   return best;
 }

@@ -12,22 +12,62 @@
 //   M_vv = m(m-1) max |P_{i,j+2} - 2 P_{i,j+1} + P_ij|
 // The bound is on the parametric distance |F(u,v) - L(u,v)| (L linear on each triangle), which
 // bounds both one-sided Hausdorff distances. The tessellator's guarantee rests on it.
+//
+// The directional bound. Norms add F_uu, F_uv and F_vv as if they pointed the same way; where
+// they do not (F_uv along the surface and F_uu across it, as on a surface of revolution; F_uu
+// and F_vv opposite, as on a saddle) a tighter bound follows from the vectors themselves. By
+// Taylor at x with a third-order remainder, for a triangle p_k and barycentric weights lambda_k
+// of x, d_k = p_k - x:
+//
+//   |F(x) - L(x)| <= (1/2) |m_1 F_uu(x) + m_2 F_uv(x) + m_3 F_vv(x)| + (1/6) sum_k lambda_k |D^3 F [d_k]^3|,
+//   m = (sum lambda_k d_ku^2, 2 sum lambda_k d_ku d_kv, sum lambda_k d_kv^2),
+//
+// where m_1 <= du^2 / 4, |m_2| <= du dv / 2, m_3 <= dv^2 / 4 (the variance and covariance of the
+// vertices' coordinates under lambda; du, dv the triangle's extents), and m_2 >= 0 when the
+// vertices are ordered alike in u and v (as in every grid triangle). The first term is at most
+// max over the box of m of |sum m_i H_i(y)|: convex in m, so attained at a corner of the box, and
+// bounded through the Gram matrices of the nets of H_i raised to one degree (convex hull). The
+// flatness bounds below are the smaller of this and the norm bound.
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "surfaces/bezier_patch.h"
 
 namespace patchwork {
 
+/// What the second derivatives H = (F_uu, F_uv, F_vv) are as vectors, and bounds on the third.
+struct DirectionalBounds {
+  /// For weights w and every point y of the domain,
+  ///   |w_0 F_uu(y) + w_1 F_uv(y) + w_2 F_vv(y)|^2 <= sum_ij w_i w_j G_ij,
+  /// G_ij = gram_max[i][j] where w_i w_j >= 0 and gram_min[i][j] where w_i w_j < 0: the extreme
+  /// Gram entries over the control points of the three nets raised to degree (n, m).
+  std::array<std::array<double, 3>, 3> gram_max;
+  std::array<std::array<double, 3>, 3> gram_min;
+  /// Bounds on |F_uuu|, |F_uuv|, |F_uvv|, |F_vvv| (third differences of the net).
+  std::array<double, 4> third;
+};
+
 /// The second-derivative bounds of a patch.
 struct SecondDerivativeBounds {
   double uu;
   double uv;
   double vv;
+  /// The directional bounds, when known (surfaces from other sources give only the norms).
+  std::optional<DirectionalBounds> directions = std::nullopt;
 };
 
-/// M_uu, M_uv, M_vv of the patch (zero where a degree is too low).
+/// Bounds over the union of the domains of a and b (the larger of each; directions only if both
+/// have them).
+SecondDerivativeBounds merged_bounds(const SecondDerivativeBounds& a, const SecondDerivativeBounds& b);
+
+/// The bounds in the parameters of a sub-domain `size` times as wide in u and v (chain rule:
+/// second derivatives times size^2, third times size^3). \pre size > 0.
+SecondDerivativeBounds scaled_bounds(const SecondDerivativeBounds& bounds, double size);
+
+/// M_uu, M_uv, M_vv of the patch (zero where a degree is too low), with its directional bounds.
 SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch);
 
 /// Tighter bounds from the nets of the pieces x pieces sub-patches (de Casteljau): each piece's
@@ -43,7 +83,8 @@ SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int p
 /// \throws InvalidInput unless 1 <= pieces <= 64.
 std::vector<SecondDerivativeBounds> piece_second_derivative_bounds(const BezierPatch3& patch, int pieces);
 
-/// The bound for parameter steps du, dv. \throws InvalidInput unless both are in (0, 1].
+/// The bound for parameter steps du, dv: the norm bound, or the directional bound where it is
+/// smaller. \throws InvalidInput unless both are in (0, 1].
 double flatness_bound(const SecondDerivativeBounds& bounds, double du, double dv);
 
 /// The bound on |F - L| over one triangle of parameter points p0, p1, p2 (any shape), L linear on
@@ -51,7 +92,8 @@ double flatness_bound(const SecondDerivativeBounds& bounds, double du, double dv
 /// M_vv d_v^2 (Taylor at x, lambda the barycentric weights of x); q(d) <= d^T A d with
 /// A = diag(M_uu + s M_uv, M_vv + M_uv / s) for any s > 0, and then the maximum over the triangle
 /// is r^2 / 2 with r the radius of its smallest enclosing circle in the metric of A. With
-/// s = `aspect` (= dv/du of a grid) a grid triangle gets flatness_bound(du, dv) exactly.
+/// s = `aspect` (= dv/du of a grid) a grid triangle gets the norm part of flatness_bound(du, dv)
+/// exactly. With directions, the directional bound of the triangle where it is smaller.
 double triangle_flatness_bound(const SecondDerivativeBounds& bounds, const Vec2& p0, const Vec2& p1, const Vec2& p2,
                                double aspect = 1.0);
 

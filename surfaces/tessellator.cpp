@@ -701,15 +701,14 @@ std::vector<std::vector<SecondDerivativeBounds>> cell_bounds(const PatchSet& set
 // over the piece, times (1/k)^2 by the chain rule. k = 1 is the whole patch.
 SecondDerivativeBounds split_bounds(const std::vector<SecondDerivativeBounds>& cells, int k, int a, int b) {
   const int span = bound_pieces / k;
-  SecondDerivativeBounds M{0.0, 0.0, 0.0};
+  std::optional<SecondDerivativeBounds> M;
   for (int y = b * span; y < (b + 1) * span; ++y) {
     for (int x = a * span; x < (a + 1) * span; ++x) {
       const SecondDerivativeBounds& c = cells[static_cast<std::size_t>(x + bound_pieces * y)];
-      M = {std::max(M.uu, c.uu), std::max(M.uv, c.uv), std::max(M.vv, c.vv)};
+      M = M ? merged_bounds(*M, c) : c;
     }
   }
-  const double scale = 1.0 / (static_cast<double>(k) * k);
-  return {scale * M.uu, scale * M.uv, scale * M.vv};
+  return scaled_bounds(*M, 1.0 / k);
 }
 
 double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {

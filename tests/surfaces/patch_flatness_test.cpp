@@ -38,6 +38,47 @@ TEST(PatchFlatness, SecondDifferencesOfAParabolicCylinder) {
   EXPECT_NEAR(testing::measured_distance(patch, 4, 1, 16), flatness_bound(M, 0.25, 1.0), 1e-15);
 }
 
+// The biquadratic patch (x(u), y(v), z(u) + z(v)) from the Bernstein coefficients of the four
+// quadratics.
+BezierPatch3 quadratic_patch(const std::array<double, 3>& x_u, const std::array<double, 3>& y_v,
+                             const std::array<double, 3>& z_u, const std::array<double, 3>& z_v) {
+  std::vector<Vec3> points;
+  for (int j = 0; j <= 2; ++j) {
+    for (int i = 0; i <= 2; ++i) points.emplace_back(x_u[i], y_v[j], z_u[i] + z_v[j]);
+  }
+  return BezierPatch3(2, 2, points);
+}
+
+TEST(PatchFlatness, DirectionalBoundIsExactWhereSecondDerivativesAreOrthogonal) {
+  // F = (u^2, v^2, 0): F_uu = (2, 0, 0) and F_vv = (0, 2, 0) at right angles, F_uv = 0. On a grid
+  // triangle |F - L| = h^2 sqrt((s(1-s))^2 + (t(1-t))^2), largest at the diagonal's midpoint:
+  // sqrt(2) h^2 / 4, where the norms add to h^2 / 2.
+  const BezierPatch3 patch = quadratic_patch({0, 0, 1}, {0, 0, 1}, {0, 0, 0}, {0, 0, 0});
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  ASSERT_TRUE(M.directions.has_value());
+  for (int n : {1, 2, 4, 7}) {
+    const double h = 1.0 / n;
+    EXPECT_NEAR(flatness_bound(M, h, h), std::sqrt(2.0) * h * h / 4.0, 1e-15);
+    EXPECT_NEAR(testing::measured_distance(patch, n, n, 8), std::sqrt(2.0) * h * h / 4.0, 1e-15);
+  }
+}
+
+TEST(PatchFlatness, DirectionalBoundLetsASaddlesCurvaturesCancel) {
+  // F = (u, v, u^2 - v^2): F_uu = (0, 0, 2) and F_vv = (0, 0, -2) cancel along the diagonal.
+  // |F - L| = h^2 |s(1-s) - t(1-t)| on a grid triangle, at most h^2 / 4 (at t = 0, s = 1/2),
+  // half the norm bound h^2 / 2.
+  const BezierPatch3 patch = quadratic_patch({0, 0.5, 1}, {0, 0.5, 1}, {0, 0, 1}, {0, 0, -1});
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  for (int n : {1, 3, 8}) {
+    const double h = 1.0 / n;
+    EXPECT_NEAR(flatness_bound(M, h, h), h * h / 4.0, 1e-15);
+    EXPECT_NEAR(testing::measured_distance(patch, n, n, 8), h * h / 4.0, 1e-15);
+    // A triangle across the cell's other diagonal is not ordered alike in u and v: the mixed
+    // moment may take either sign, and the bound still holds.
+    EXPECT_GE(triangle_flatness_bound(M, Vec2(h, 0), Vec2(h, h), Vec2(0, h)), h * h / 4.0 - 1e-15);
+  }
+}
+
 RC_GTEST_PROP(PatchFlatness, MeasuredDistanceNeverExceedsTheBound, ()) {
   const BezierPatch3 patch = *testing::random_patch(1, 4);
   const int nu = *rc::gen::inRange(1, 6);
@@ -125,6 +166,7 @@ RC_GTEST_PROP(PatchFlatness, PieceBoundsAreTheSubpatchesAndNoLargerThanTheNets, 
   const BezierPatch3 patch(n, m, points);
   const SecondDerivativeBounds fast = second_derivative_bounds(patch, pieces);
   SecondDerivativeBounds reference{0, 0, 0};
+  SecondDerivativeBounds directions{0, 0, 0};
   for (int b = 0; b < pieces; ++b) {
     for (int a = 0; a < pieces; ++a) {
       const double p = pieces;
@@ -132,6 +174,9 @@ RC_GTEST_PROP(PatchFlatness, PieceBoundsAreTheSubpatchesAndNoLargerThanTheNets, 
           second_derivative_bounds(subpatch(patch, a / p, (a + 1) / p, b / p, (b + 1) / p));
       reference = {std::max(reference.uu, p * p * s.uu), std::max(reference.uv, p * p * s.uv),
                    std::max(reference.vv, p * p * s.vv)};
+      // The directional bounds, merged piece by piece after the chain rule.
+      const SecondDerivativeBounds in_patch = scaled_bounds(s, p);
+      directions = a + b == 0 ? in_patch : merged_bounds(directions, in_patch);
     }
   }
   const SecondDerivativeBounds whole = second_derivative_bounds(patch);
@@ -142,6 +187,21 @@ RC_GTEST_PROP(PatchFlatness, PieceBoundsAreTheSubpatchesAndNoLargerThanTheNets, 
   RC_ASSERT(fast.uu <= whole.uu + slack);
   RC_ASSERT(fast.uv <= whole.uv + slack);
   RC_ASSERT(fast.vv <= whole.vv + slack);
+  RC_ASSERT(fast.directions.has_value() && directions.directions.has_value());
+  const DirectionalBounds& d = *fast.directions;
+  const DirectionalBounds& r = *directions.directions;
+  const double gram_slack = slack * (1.0 + whole.uu + whole.uv + whole.vv);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      RC_ASSERT(std::abs(d.gram_max[i][j] - r.gram_max[i][j]) <= gram_slack);
+      RC_ASSERT(std::abs(d.gram_min[i][j] - r.gram_min[i][j]) <= gram_slack);
+      RC_ASSERT(d.gram_max[i][j] >= d.gram_min[i][j]);
+    }
+    // The diagonal bounds the squared norms: no larger than the norm bounds squared.
+    const double norm = i == 0 ? fast.uu : i == 1 ? fast.uv : fast.vv;
+    RC_ASSERT(d.gram_max[i][i] <= norm * norm + gram_slack);
+  }
+  for (int k = 0; k < 4; ++k) RC_ASSERT(std::abs(d.third[k] - r.third[k]) <= slack * (1.0 + r.third[k]));
 }
 
 }  // namespace
