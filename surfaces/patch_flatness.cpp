@@ -331,11 +331,14 @@ double sampled_grid_distance(const BezierPatch3& patch, std::int64_t nu, std::in
   return result;
 }
 
-GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance) {
+GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, std::int64_t min_segments) {
   if (!std::isfinite(tolerance) || !(tolerance > 0.0)) {
     throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " is not positive and finite"));
   }
   constexpr std::int64_t limit = std::int64_t{1} << 20;
+  if (min_segments < 1 || min_segments > limit) {
+    throw InvalidInput(detail::message("grid_for_tolerance: at least ", min_segments, " segments is not in [1, 2^20]"));
+  }
   // The bound falls as either rate grows (both the norm and the directional bound do), so the
   // smallest rates are found by bisection and the fewest cells by one walk along N_u.
   const auto meets = [&](std::int64_t nu, std::int64_t nv) {
@@ -345,11 +348,11 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance) {
     throw InvalidInput(
         detail::message("grid_for_tolerance: tolerance ", tolerance, " needs more than 2^20 segments per side"));
   }
-  // The smallest x in [1, high] with ok(x), given ok(high): doubling from 1, then bisection (the
-  // answers are small next to 2^20, and each test is a bound).
-  const auto smallest = [](std::int64_t high, const auto& ok) {
-    std::int64_t low = 1;
-    for (std::int64_t step = 1; step < high; step *= 2) {
+  // The smallest x in [min_segments, high] with ok(x), given ok(high): doubling from there, then
+  // bisection (the answers are small next to 2^20, and each test is a bound).
+  const auto smallest = [min_segments](std::int64_t high, const auto& ok) {
+    std::int64_t low = min_segments;
+    for (std::int64_t step = min_segments; step < high; step *= 2) {
       if (ok(step)) {
         high = step;
         break;
@@ -372,7 +375,9 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance) {
   GridSize best{-1, -1};
   std::int64_t nv = limit;  // meets(nu, nv) holds for every nu >= first
   for (std::int64_t nu = first; nu <= limit; ++nu) {
-    if (nv > 1 && meets(nu, nv - 1)) nv = smallest(nv - 1, [&](std::int64_t v) { return meets(nu, v); });
+    if (nv > min_segments && meets(nu, nv - 1)) {
+      nv = smallest(nv - 1, [&](std::int64_t v) { return meets(nu, v); });
+    }
     const bool better = best.segments_u < 0 || nu * nv < best.segments_u * best.segments_v ||
                         (nu * nv == best.segments_u * best.segments_v &&
                          std::abs(nu - nv) < std::abs(best.segments_u - best.segments_v));

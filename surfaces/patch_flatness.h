@@ -109,9 +109,10 @@ struct GridSize {
   std::int64_t segments_v;
 };
 
-/// The grid with the fewest cells whose bound is <= tolerance (ties: the more even grid).
-/// \throws InvalidInput if the tolerance is not positive and finite, or a side would need more
-///         than 2^20 segments.
-GridSize grid_for_tolerance(const SecondDerivativeBounds& bounds, double tolerance);
+/// The grid with the fewest cells, at least min_segments per side, whose bound is <= tolerance
+/// (ties: the more even grid).
+/// \throws InvalidInput if the tolerance is not positive and finite, min_segments is not in
+///         [1, 2^20], or a side would need more than 2^20 segments.
+GridSize grid_for_tolerance(const SecondDerivativeBounds& bounds, double tolerance, std::int64_t min_segments = 1);
 
 }  // namespace patchwork

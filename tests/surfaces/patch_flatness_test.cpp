@@ -91,12 +91,14 @@ RC_GTEST_PROP(PatchFlatness, GridForToleranceIsTheSmallestThatMeetsTheBound, ())
   const BezierPatch3 patch = *testing::random_patch(2, 4);
   const SecondDerivativeBounds M = second_derivative_bounds(patch);
   const double tolerance = *coordinate(0.05, 5.0);
-  const GridSize grid = grid_for_tolerance(M, tolerance);
+  const std::int64_t least = *rc::gen::inRange(1, 4);
+  const GridSize grid = grid_for_tolerance(M, tolerance, least);
   RC_ASSERT(flatness_bound(M, 1.0 / grid.segments_u, 1.0 / grid.segments_v) <= tolerance);
-  // Brute force: no grid with fewer cells meets the bound.
+  RC_ASSERT(grid.segments_u >= least && grid.segments_v >= least);
+  // Brute force: no grid with fewer cells (and at least `least` segments a side) meets the bound.
   const std::int64_t cells = grid.segments_u * grid.segments_v;
-  for (std::int64_t nu = 1; nu < cells; ++nu) {
-    for (std::int64_t nv = 1; nu * nv < cells; ++nv) {
+  for (std::int64_t nu = least; nu < cells; ++nu) {
+    for (std::int64_t nv = least; nu * nv < cells; ++nv) {
       RC_ASSERT(flatness_bound(M, 1.0 / nu, 1.0 / nv) > tolerance);
     }
   }
@@ -109,6 +111,8 @@ TEST(PatchFlatness, RejectsBadInput) {
   EXPECT_THROW(grid_for_tolerance(M, -1.0), InvalidInput);
   EXPECT_THROW(grid_for_tolerance(M, std::nan("")), InvalidInput);
   EXPECT_THROW(grid_for_tolerance(M, 1e-300), InvalidInput);  // would need more than 2^20 segments
+  EXPECT_THROW(grid_for_tolerance(M, 1.0, 0), InvalidInput);
+  EXPECT_THROW(grid_for_tolerance(M, 1.0, (1 << 20) + 1), InvalidInput);
 }
 
 }  // namespace
