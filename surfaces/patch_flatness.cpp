@@ -53,6 +53,7 @@ SecondDerivativeBounds bounds_of_net(const Net& net_at, int n, int m) {
   double uu = 0.0, uv = 0.0, vv = 0.0;
   if (n >= 2) {
     std::vector<Vec3> net;
+    net.reserve(static_cast<std::size_t>((n - 1) * (m + 1)));
     for (int j = 0; j <= m; ++j) {
       for (int i = 0; i + 2 <= n; ++i) {
         net.push_back(n * (n - 1.0) * (at(i + 2, j) - 2.0 * at(i + 1, j) + at(i, j)));
@@ -63,6 +64,7 @@ SecondDerivativeBounds bounds_of_net(const Net& net_at, int n, int m) {
   }
   if (n >= 1 && m >= 1) {
     std::vector<Vec3> net;
+    net.reserve(static_cast<std::size_t>(n * m));
     for (int j = 0; j + 1 <= m; ++j) {
       for (int i = 0; i + 1 <= n; ++i) {
         net.push_back(static_cast<double>(n) * m * (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j)));
@@ -73,6 +75,7 @@ SecondDerivativeBounds bounds_of_net(const Net& net_at, int n, int m) {
   }
   if (m >= 2) {
     std::vector<Vec3> net;
+    net.reserve(static_cast<std::size_t>((n + 1) * (m - 1)));
     for (int j = 0; j + 2 <= m; ++j) {
       for (int i = 0; i <= n; ++i) {
         net.push_back(m * (m - 1.0) * (at(i, j + 2) - 2.0 * at(i, j + 1) + at(i, j)));
