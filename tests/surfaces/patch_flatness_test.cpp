@@ -79,6 +79,47 @@ TEST(PatchFlatness, DirectionalBoundLetsASaddlesCurvaturesCancel) {
   }
 }
 
+// Nets whose second differences are nearly constant vectors (a quadratic function of the indices,
+// raised in degree, plus a little noise): where the directional bound, not the norm bound, is
+// the smaller one. It must hold on grids and on any triangle.
+RC_GTEST_PROP(PatchFlatness, DirectionalBoundHoldsOnNearlyQuadraticPatches, ()) {
+  std::array<Vec3, 6> c;
+  for (Vec3& v : c) v = Vec3(*coordinate(-3, 3), *coordinate(-3, 3), *coordinate(-3, 3));
+  const double noise = *coordinate(0.0, 0.2);
+  std::vector<Vec3> points;
+  for (int j = 0; j <= 2; ++j) {
+    for (int i = 0; i <= 2; ++i) {
+      const Vec3 jitter(*coordinate(-1, 1), *coordinate(-1, 1), *coordinate(-1, 1));
+      points.push_back(c[0] + i * c[1] + j * c[2] + i * i * c[3] + i * j * c[4] + j * j * c[5] + noise * jitter);
+    }
+  }
+  const BezierPatch3 patch =
+      elevate_degree(BezierPatch3(2, 2, points), *rc::gen::inRange(0, 3), *rc::gen::inRange(0, 3));
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  const int nu = *rc::gen::inRange(1, 7);
+  const int nv = *rc::gen::inRange(1, 7);
+  const double bound = flatness_bound(M, 1.0 / nu, 1.0 / nv);
+  const double norms = (M.uu / (nu * nu) + 2.0 * M.uv / (nu * nv) + M.vv / (nv * nv)) / 8.0;
+  RC_TAG(bound < 0.99 * norms ? "directional bound smaller" : "norm bound");
+  const double slack = 1e-12 * testing::net_scale(patch);
+  RC_ASSERT(testing::measured_distance(patch, nu, nv, 6) <= bound * (1.0 + 1e-12) + slack);
+  // Any triangle, ordered alike in u and v or not.
+  std::array<Vec2, 3> p;
+  for (Vec2& q : p) q = Vec2(*coordinate(0, 1), *coordinate(0, 1));
+  const double triangle = triangle_flatness_bound(M, p[0], p[1], p[2]);
+  std::array<Vec3, 3> corners;
+  for (int k = 0; k < 3; ++k) corners[k] = patch.evaluate(p[k].x(), p[k].y());
+  constexpr int samples = 10;
+  for (int a = 0; a <= samples; ++a) {
+    for (int b = 0; a + b <= samples; ++b) {
+      const double x = static_cast<double>(a) / samples, y = static_cast<double>(b) / samples;
+      const Vec2 uv = (1 - x - y) * p[0] + x * p[1] + y * p[2];
+      const Vec3 linear = (1 - x - y) * corners[0] + x * corners[1] + y * corners[2];
+      RC_ASSERT((patch.evaluate(uv.x(), uv.y()) - linear).norm() <= triangle * (1.0 + 1e-9) + slack);
+    }
+  }
+}
+
 RC_GTEST_PROP(PatchFlatness, MeasuredDistanceNeverExceedsTheBound, ()) {
   const BezierPatch3 patch = *testing::random_patch(1, 4);
   const int nu = *rc::gen::inRange(1, 6);
