@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -13,9 +14,9 @@ namespace patchwork {
 
 namespace {
 
-// A net of degrees (n, m), P_ij at i + (n + 1) j, raised by one degree in u (transposed: in v).
-std::vector<Vec3> raised_in_u(const std::vector<Vec3>& net, int n, int m) {
-  std::vector<Vec3> raised(static_cast<std::size_t>((n + 2) * (m + 1)));
+// A net of degrees (n, m), P_ij at i + (n + 1) j, raised by one degree in u (transposed: in v),
+// written to `raised` ((n + 2)(m + 1) points; (n + 1)(m + 2) in v).
+void raise_in_u(std::span<const Vec3> net, int n, int m, std::span<Vec3> raised) {
   for (int j = 0; j <= m; ++j) {
     for (int i = 0; i <= n + 1; ++i) {
       const double a = static_cast<double>(i) / (n + 1);
@@ -24,11 +25,9 @@ std::vector<Vec3> raised_in_u(const std::vector<Vec3>& net, int n, int m) {
       raised[static_cast<std::size_t>(i + (n + 2) * j)] = a * left + (1.0 - a) * right;
     }
   }
-  return raised;
 }
 
-std::vector<Vec3> raised_in_v(const std::vector<Vec3>& net, int n, int m) {
-  std::vector<Vec3> raised(static_cast<std::size_t>((n + 1) * (m + 2)));
+void raise_in_v(std::span<const Vec3> net, int n, int m, std::span<Vec3> raised) {
   for (int j = 0; j <= m + 1; ++j) {
     const double a = static_cast<double>(j) / (m + 1);
     for (int i = 0; i <= n; ++i) {
@@ -37,60 +36,66 @@ std::vector<Vec3> raised_in_v(const std::vector<Vec3>& net, int n, int m) {
       raised[static_cast<std::size_t>(i + (n + 1) * j)] = a * below + (1.0 - a) * above;
     }
   }
-  return raised;
 }
 
 // The norm and directional bounds of the patch with net `at(i, j)` of degrees (n, m).
 template <class Net>
 SecondDerivativeBounds bounds_of_net(const Net& net_at, int n, int m) {
-  std::vector<Vec3> points(static_cast<std::size_t>((n + 1) * (m + 1)));
+  // One buffer: the net, then the nets of F_uu (n-2, m), F_uv (n-1, m-1) and F_vv (n, m-2) each
+  // raised to (n, m), then two scratch nets for the raising.
+  const auto count = static_cast<std::size_t>((n + 1) * (m + 1));
+  std::vector<Vec3> buffer(6 * count);
+  const std::span<Vec3> points(buffer.data(), count);
+  const std::array<std::span<Vec3>, 3> h = {std::span<Vec3>(buffer.data() + count, count),
+                                            std::span<Vec3>(buffer.data() + 2 * count, count),
+                                            std::span<Vec3>(buffer.data() + 3 * count, count)};
+  const std::span<Vec3> raw(buffer.data() + 4 * count, count);
+  const std::span<Vec3> half(buffer.data() + 5 * count, count);
   for (int j = 0; j <= m; ++j) {
     for (int i = 0; i <= n; ++i) points[static_cast<std::size_t>(i + (n + 1) * j)] = net_at(i, j);
   }
   const auto at = [&](int i, int j) -> const Vec3& { return points[static_cast<std::size_t>(i + (n + 1) * j)]; };
-  // The nets of F_uu (n-2, m), F_uv (n-1, m-1) and F_vv (n, m-2), each raised to (n, m).
-  std::array<std::vector<Vec3>, 3> h;
+  const std::array<bool, 3> present = {n >= 2, n >= 1 && m >= 1, m >= 2};
   double uu = 0.0, uv = 0.0, vv = 0.0;
-  if (n >= 2) {
-    std::vector<Vec3> net;
-    net.reserve(static_cast<std::size_t>((n - 1) * (m + 1)));
+  if (present[0]) {
+    std::size_t k = 0;
     for (int j = 0; j <= m; ++j) {
-      for (int i = 0; i + 2 <= n; ++i) {
-        net.push_back(n * (n - 1.0) * (at(i + 2, j) - 2.0 * at(i + 1, j) + at(i, j)));
-        uu = std::max(uu, net.back().norm());
+      for (int i = 0; i + 2 <= n; ++i, ++k) {
+        raw[k] = n * (n - 1.0) * (at(i + 2, j) - 2.0 * at(i + 1, j) + at(i, j));
+        uu = std::max(uu, raw[k].norm());
       }
     }
-    h[0] = raised_in_u(raised_in_u(net, n - 2, m), n - 1, m);
+    raise_in_u(raw, n - 2, m, half);
+    raise_in_u(half, n - 1, m, h[0]);
   }
-  if (n >= 1 && m >= 1) {
-    std::vector<Vec3> net;
-    net.reserve(static_cast<std::size_t>(n * m));
+  if (present[1]) {
+    std::size_t k = 0;
     for (int j = 0; j + 1 <= m; ++j) {
-      for (int i = 0; i + 1 <= n; ++i) {
-        net.push_back(static_cast<double>(n) * m * (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j)));
-        uv = std::max(uv, net.back().norm());
+      for (int i = 0; i + 1 <= n; ++i, ++k) {
+        raw[k] = static_cast<double>(n) * m * (at(i + 1, j + 1) - at(i + 1, j) - at(i, j + 1) + at(i, j));
+        uv = std::max(uv, raw[k].norm());
       }
     }
-    h[1] = raised_in_v(raised_in_u(net, n - 1, m - 1), n, m - 1);
+    raise_in_u(raw, n - 1, m - 1, half);
+    raise_in_v(half, n, m - 1, h[1]);
   }
-  if (m >= 2) {
-    std::vector<Vec3> net;
-    net.reserve(static_cast<std::size_t>((n + 1) * (m - 1)));
+  if (present[2]) {
+    std::size_t k = 0;
     for (int j = 0; j + 2 <= m; ++j) {
-      for (int i = 0; i <= n; ++i) {
-        net.push_back(m * (m - 1.0) * (at(i, j + 2) - 2.0 * at(i, j + 1) + at(i, j)));
-        vv = std::max(vv, net.back().norm());
+      for (int i = 0; i <= n; ++i, ++k) {
+        raw[k] = m * (m - 1.0) * (at(i, j + 2) - 2.0 * at(i, j + 1) + at(i, j));
+        vv = std::max(vv, raw[k].norm());
       }
     }
-    h[2] = raised_in_v(raised_in_v(net, n, m - 2), n, m - 1);
+    raise_in_v(raw, n, m - 2, half);
+    raise_in_v(half, n, m - 1, h[2]);
   }
   DirectionalBounds d{};
-  const auto count = static_cast<std::size_t>((n + 1) * (m + 1));
   for (int a = 0; a < 3; ++a) {
     for (int b = a; b < 3; ++b) {
       double high = 0.0;
       double low = 0.0;
-      if (!h[a].empty() && !h[b].empty()) {
+      if (present[a] && present[b]) {
         high = -std::numeric_limits<double>::infinity();
         low = std::numeric_limits<double>::infinity();
         for (std::size_t c = 0; c < count; ++c) {

@@ -36,6 +36,10 @@ int along(int edge, int nu, int nv) { return edge % 2 == 0 ? nu : nv; }
 // What one patch needs before evaluation.
 struct PatchPlan {
   bool culled = false;
+  // The rates of the stitched pattern whose bound was last computed, and that bound (each round
+  // of raise_rates_to_bounds and the evaluation need it; most patterns do not change).
+  PatternRates checked_rates{0, 0, {0, 0, 0, 0}};
+  double checked_bound = 0.0;
   double tolerance = 0.0;
   SecondDerivativeBounds bounds{0, 0, 0};
   int nu = 1;
@@ -270,7 +274,7 @@ class Tessellator {
         const int nv = inner.v;
         // A plain grid meets the tolerance by construction (its rates only grew); only
         // stitched patterns need their triangles checked.
-        if (inner.grid || pattern_bound(make_pattern(rates(p)), plan.bounds, nu, nv) <= plan.tolerance) continue;
+        if (inner.grid || stitched_bound(p) <= plan.tolerance) continue;
         // Raise one direction: the one whose pattern then meets the tolerance with fewer cells,
         // else the one whose bound falls further.
         struct Candidate {
@@ -302,6 +306,22 @@ class Tessellator {
       update_edge_rates();
     }
     throw NumericalError("tessellate: the stitched rates did not settle within 64 rounds");
+  }
+
+  static bool same_rates(const PatternRates& a, const PatternRates& b) {
+    return a.inner_u == b.inner_u && a.inner_v == b.inner_v && a.edges == b.edges;
+  }
+
+  // The bound of patch p's stitched pattern at its current rates (computed once per rates).
+  double stitched_bound(std::uint32_t p) {
+    PatchPlan& plan = plans_[p];
+    const PatternRates r = rates(p);
+    if (!same_rates(r, plan.checked_rates)) {
+      const InnerGrid inner = inner_grid(r);
+      plan.checked_rates = r;
+      plan.checked_bound = pattern_bound(make_pattern(r), plan.bounds, inner.u, inner.v);
+    }
+    return plan.checked_bound;
   }
 
   void check_triangle_budget() const {
@@ -416,8 +436,11 @@ class Tessellator {
     } else {
       for (const Triangle& t : pattern.triangles) (degenerate(t) ? out.dropped : out.kept).push_back(t);
     }
-    out.bound = pattern.grid ? flatness_bound(plans_[p].bounds, 1.0 / nu, 1.0 / nv)
-                             : pattern_bound(out.kept, out.dropped, pattern.points, plans_[p].bounds, nu, nv);
+    // (Kept and dropped triangles together are the pattern's, whose bound raising computed.)
+    out.bound = pattern.grid                                  ? flatness_bound(plans_[p].bounds, 1.0 / nu, 1.0 / nv)
+                : same_rates(r, plans_[p].checked_rates) ? plans_[p].checked_bound
+                                                          : pattern_bound(out.kept, out.dropped, pattern.points,
+                                                                          plans_[p].bounds, nu, nv);
   }
 
   // Positions, normals (and tangents) of every pattern point: the interior as one grid, each
