@@ -119,9 +119,13 @@ double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeB
 
 class Tessellator {
  public:
-  Tessellator(const SurfacePieces& pieces, const TessellationOptions& options)
-      : pieces_(pieces), options_(options), count_(pieces.count), plans_(count_), slots_(count_) {
+  // `planned`: the grid of every piece at the options' tolerance, when the caller has found them
+  // already (tessellate(PatchSet) does, to choose the split).
+  Tessellator(const SurfacePieces& pieces, const TessellationOptions& options,
+              const std::vector<GridSize>* planned = nullptr)
+      : pieces_(pieces), options_(options), planned_(planned), count_(pieces.count), plans_(count_), slots_(count_) {
     PATCHWORK_ASSERT(pieces.bounds.size() == count_, "one bound per piece");
+    PATCHWORK_ASSERT(planned == nullptr || (planned->size() == count_ && !options.camera), "one grid per piece");
   }
 
   Tessellation run() {
@@ -194,7 +198,7 @@ class Tessellator {
       }
       GridSize grid{};
       try {
-        grid = grid_for_tolerance(plan.bounds, plan.tolerance, least_segments(plan.bounds));
+        grid = planned_ ? (*planned_)[p] : grid_for_tolerance(plan.bounds, plan.tolerance, least_segments(plan.bounds));
       } catch (const InvalidInput&) {
         throw InvalidInput(detail::message("tessellate: piece ", p,
                                            " would need more than 2^20 segments per side at "
@@ -714,6 +718,7 @@ class Tessellator {
 
   const SurfacePieces& pieces_;
   const TessellationOptions& options_;
+  const std::vector<GridSize>* planned_;
   std::size_t count_;
   std::vector<PatchPlan> plans_;
   std::vector<std::array<EdgeSlot, 4>> slots_;
@@ -847,20 +852,25 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
   return pieces;
 }
 
-// The a-priori cell count of every piece at tolerance eps, as plan_patches sets the rates (two
-// segments per direction at least on a curved piece); shared-edge rates and stitching come on top.
-std::int64_t estimated_cells(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps) {
-  std::int64_t total = 0;
+// The grid of every piece of a k x k split at tolerance eps, as plan_patches finds them (in the
+// pieces' order), and their cell count; shared-edge rates and stitching come on top.
+struct SplitEstimate {
+  std::vector<GridSize> grids;
+  std::int64_t cells = 0;
+};
+
+SplitEstimate estimated_split(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps) {
+  SplitEstimate estimate;
   for (const auto& patch_cells : cells) {
     for (int b = 0; b < k; ++b) {
       for (int a = 0; a < k; ++a) {
         const SecondDerivativeBounds M = split_bounds(patch_cells, k, a, b);
-        const GridSize grid = grid_for_tolerance(M, eps, least_segments(M));
-        total += grid.segments_u * grid.segments_v;
+        estimate.grids.push_back(grid_for_tolerance(M, eps, least_segments(M)));
+        estimate.cells += estimate.grids.back().segments_u * estimate.grids.back().segments_v;
       }
     }
   }
-  return total;
+  return estimate;
 }
 
 }  // namespace
@@ -887,19 +897,25 @@ Tessellation tessellate(const PatchSet& set, const TessellationOptions& options)
                      : relative        ? *options.relative_tolerance * whole.diagonal
                                        : 0.0;
   int best_k = 1;
+  SplitEstimate best;
   if (options.split_patches && modes == 1 && std::isfinite(eps) && eps > 0.0) {
     try {
-      std::int64_t best = estimated_cells(cells, 1, eps);
+      best = estimated_split(cells, 1, eps);
       for (int k : {2, 4}) {
-        const std::int64_t candidate = estimated_cells(cells, k, eps);
-        if (candidate < best) best = candidate, best_k = k;
+        SplitEstimate candidate = estimated_split(cells, k, eps);
+        if (candidate.cells < best.cells) best = std::move(candidate), best_k = k;
       }
     } catch (const InvalidInput&) {
-      best_k = 1;  // a tolerance too fine for any grid: the whole patches give the error message
+      // A tolerance too fine for any grid: the whole patches give the error message.
+      best_k = 1;
+      best.grids.clear();
     }
   }
-  if (best_k == 1) return tessellate(whole, options);
-  return tessellate(pieces_of(set, cells, best_k, whole.diagonal), options);
+  // The grids found for the choice are the plan's (the same bounds at the same tolerance).
+  const std::vector<GridSize>* planned = best.grids.empty() ? nullptr : &best.grids;
+  if (best_k == 1) return Tessellator(whole, options, planned).run();
+  const SurfacePieces split = pieces_of(set, cells, best_k, whole.diagonal);
+  return Tessellator(split, options, planned).run();
 }
 
 }  // namespace patchwork

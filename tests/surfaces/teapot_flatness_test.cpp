@@ -1,5 +1,6 @@
-// The Filip-Magedson-Markot bound on the teapot: it must hold (measured <= bound) and must not
-// be loose by more than a small factor, since the tessellator's triangle count rests on it.
+// The flatness bound on the teapot (the smaller of the Filip-Magedson-Markot norm bound and the
+// directional bound): it must hold (measured <= bound) and must not be loose by more than a small
+// factor, since the tessellator's triangle count rests on it.
 
 #include <gtest/gtest.h>
 
@@ -25,7 +26,7 @@ TEST(TeapotFlatness, BoundHoldsAndIsWithinThreeTimesTheMeasuredDistance) {
     EXPECT_LE(bound, 3.0 * measured) << "patch " << k;
     loosest = std::max(loosest, bound / measured);
   }
-  std::cout << "teapot at tolerance 1e-2: the FMM bound is at most " << loosest << " x the measured distance\n";
+  std::cout << "teapot at tolerance 1e-2: the flatness bound is at most " << loosest << " x the measured distance\n";
 }
 
 }  // namespace
