@@ -38,6 +38,23 @@ TEST(PatchFlatness, SecondDifferencesOfAParabolicCylinder) {
   EXPECT_NEAR(testing::measured_distance(patch, 4, 1, 16), flatness_bound(M, 0.25, 1.0), 1e-15);
 }
 
+// max |F - L| over a `samples`-step barycentric lattice of the parameter triangle p, L the
+// linear interpolant of F at its corners.
+double sampled_triangle_distance(const BezierPatch3& patch, const std::array<Vec2, 3>& p, int samples) {
+  std::array<Vec3, 3> corners;
+  for (int k = 0; k < 3; ++k) corners[k] = patch.evaluate(p[k].x(), p[k].y());
+  double distance = 0.0;
+  for (int a = 0; a <= samples; ++a) {
+    for (int b = 0; a + b <= samples; ++b) {
+      const double x = static_cast<double>(a) / samples, y = static_cast<double>(b) / samples;
+      const Vec2 uv = (1 - x - y) * p[0] + x * p[1] + y * p[2];
+      const Vec3 linear = (1 - x - y) * corners[0] + x * corners[1] + y * corners[2];
+      distance = std::max(distance, (patch.evaluate(uv.x(), uv.y()) - linear).norm());
+    }
+  }
+  return distance;
+}
+
 // The biquadratic patch (x(u), y(v), z(u) + z(v)) from the Bernstein coefficients of the four
 // quadratics.
 BezierPatch3 quadratic_patch(const std::array<double, 3>& x_u, const std::array<double, 3>& y_v,
@@ -107,17 +124,7 @@ RC_GTEST_PROP(PatchFlatness, DirectionalBoundHoldsOnNearlyQuadraticPatches, ()) 
   std::array<Vec2, 3> p;
   for (Vec2& q : p) q = Vec2(*coordinate(0, 1), *coordinate(0, 1));
   const double triangle = triangle_flatness_bound(M, p[0], p[1], p[2]);
-  std::array<Vec3, 3> corners;
-  for (int k = 0; k < 3; ++k) corners[k] = patch.evaluate(p[k].x(), p[k].y());
-  constexpr int samples = 10;
-  for (int a = 0; a <= samples; ++a) {
-    for (int b = 0; a + b <= samples; ++b) {
-      const double x = static_cast<double>(a) / samples, y = static_cast<double>(b) / samples;
-      const Vec2 uv = (1 - x - y) * p[0] + x * p[1] + y * p[2];
-      const Vec3 linear = (1 - x - y) * corners[0] + x * corners[1] + y * corners[2];
-      RC_ASSERT((patch.evaluate(uv.x(), uv.y()) - linear).norm() <= triangle * (1.0 + 1e-9) + slack);
-    }
-  }
+  RC_ASSERT(sampled_triangle_distance(patch, p, 10) <= triangle * (1.0 + 1e-9) + slack);
 }
 
 RC_GTEST_PROP(PatchFlatness, MeasuredDistanceNeverExceedsTheBound, ()) {
@@ -177,17 +184,7 @@ RC_GTEST_PROP(TriangleFlatnessBound, BoundsTheSampledDistanceOnAnyTriangle, ()) 
   for (Vec2& q : p) q = Vec2(*testing::coordinate(0, 1), *testing::coordinate(0, 1));
   const double aspect = *testing::coordinate(0.1, 10);
   const double bound = triangle_flatness_bound(M, p[0], p[1], p[2], aspect);
-  std::array<Vec3, 3> corners;
-  for (int k = 0; k < 3; ++k) corners[k] = patch.evaluate(p[k].x(), p[k].y());
-  constexpr int samples = 12;
-  for (int a = 0; a <= samples; ++a) {
-    for (int b = 0; a + b <= samples; ++b) {
-      const double x = static_cast<double>(a) / samples, y = static_cast<double>(b) / samples;
-      const Vec2 uv = (1 - x - y) * p[0] + x * p[1] + y * p[2];
-      const Vec3 linear = (1 - x - y) * corners[0] + x * corners[1] + y * corners[2];
-      RC_ASSERT((patch.evaluate(uv.x(), uv.y()) - linear).norm() <= bound * (1 + 1e-9) + 1e-12 * testing::net_scale(patch));
-    }
-  }
+  RC_ASSERT(sampled_triangle_distance(patch, p, 12) <= bound * (1 + 1e-9) + 1e-12 * testing::net_scale(patch));
 }
 
 }  // namespace
