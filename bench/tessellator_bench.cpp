@@ -42,22 +42,40 @@ void teapot_end_to_end(benchmark::State& state) {
 }
 BENCHMARK(teapot_end_to_end)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// Uniform N x N grids (N = range(0)) on range(1) threads, into one Tessellation whose arrays are
+// reused from run to run (range(2) = 1: the steady state of a caller that tessellates again and
+// again) or a fresh one each run (range(2) = 0: every run pays for new memory, page faults and
+// the kernel's zeroing included).
 void teapot_uniform_throughput(benchmark::State& state) {
   TessellationOptions options;
   options.segments = static_cast<int>(state.range(0));
   options.threads = static_cast<int>(state.range(1));
   options.measure = false;
   options.optimize = false;
+  const bool reuse = state.range(2) == 1;
+  Tessellation result;
   std::size_t vertices = 0;
   for (auto _ : state) {
-    const Tessellation result = tessellate(teapot(), options);
+    if (reuse) {
+      tessellate(teapot(), options, result);
+    } else {
+      result = tessellate(teapot(), options);
+    }
     vertices = result.mesh.vertex_count();
     benchmark::DoNotOptimize(result.mesh.positions.data());
+    benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(vertices));
   state.counters["vertices"] = static_cast<double>(vertices);
 }
-BENCHMARK(teapot_uniform_throughput)->Args({256, 1})->Args({256, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(teapot_uniform_throughput)
+    ->ArgNames({"N", "threads", "reuse"})
+    ->Args({256, 1, 1})
+    ->Args({256, 2, 1})
+    ->Args({256, 1, 0})
+    ->Args({256, 2, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The smallest per-patch grid (fewest cells) whose sampled distance meets eps: what the a-priori
 // rates are compared with.

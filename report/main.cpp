@@ -263,30 +263,42 @@ double write_bandwidth(std::size_t bytes, bool use_memset) {
 
 std::string throughput_section(const PatchSet& teapot, bool quick) {
   const int n = quick ? 64 : 256;
-  const int repeats = quick ? 1 : 3;
+  const int repeats = quick ? 1 : 5;
   std::ostringstream out;
   out << "## 5. Throughput\n\nThe teapot at N = " << n << " per patch (uniform), position + normal + UV, no"
       << " self-measurement, no vertex-cache reordering (as `bench/tessellator_bench`); median of " << repeats
-      << " runs. The ceiling beside it is this machine's write bandwidth, measured now on a warm buffer, divided by"
-      << " the bytes a vertex occupies in the output (`RenderMesh`: position, normal in doubles, UV: 64 bytes;"
-      << " the glTF file stores 32).\n\n| threads | vertices | ms | vertices/s |\n|---|---|---|---|\n";
+      << " runs. *Reused*: into one `Tessellation` whose arrays keep their storage from run to run (after one"
+      << " warm-up run), the steady state of a caller that tessellates again and again; *fresh*: a new one each"
+      << " run, so every run also pays for new memory (page faults, the kernel zeroing pages). The ceiling beside"
+      << " it is this machine's write bandwidth, measured now on a warm buffer, divided by the bytes a vertex"
+      << " occupies in the output (`RenderMesh`: position, normal in doubles, UV: 64 bytes; with its share of the"
+      << " indices, position ids and triangle patches, about 100; the glTF file stores 32).\n\n"
+      << "| threads | output | vertices | ms | vertices/s |\n|---|---|---|---|---|\n";
   for (int threads : {1, 2}) {
-    TessellationOptions options;
-    options.segments = n;
-    options.threads = threads;
-    options.measure = false;
-    options.optimize = false;
-    std::size_t vertices = 0;
-    std::vector<double> seconds;
-    for (int r = 0; r < repeats; ++r) {
-      const auto start = std::chrono::steady_clock::now();
-      vertices = tessellate(teapot, options).mesh.vertex_count();
-      seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    for (const bool reuse : {true, false}) {
+      TessellationOptions options;
+      options.segments = n;
+      options.threads = threads;
+      options.measure = false;
+      options.optimize = false;
+      Tessellation result;
+      if (reuse) tessellate(teapot, options, result);
+      std::vector<double> seconds;
+      for (int r = 0; r < repeats; ++r) {
+        const auto start = std::chrono::steady_clock::now();
+        if (reuse) {
+          tessellate(teapot, options, result);
+        } else {
+          result = tessellate(teapot, options);
+        }
+        seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      }
+      std::sort(seconds.begin(), seconds.end());
+      const double median = seconds[seconds.size() / 2];
+      const std::size_t vertices = result.mesh.vertex_count();
+      out << "| " << threads << " | " << (reuse ? "reused" : "fresh") << " | " << count(vertices) << " | "
+          << text("%.4g", 1e3 * median) << " | " << text("%.3g", static_cast<double>(vertices) / median) << " |\n";
     }
-    std::sort(seconds.begin(), seconds.end());
-    const double median = seconds[seconds.size() / 2];
-    out << "| " << threads << " | " << count(vertices) << " | " << text("%.4g", 1e3 * median) << " | "
-        << text("%.3g", static_cast<double>(vertices) / median) << " |\n";
   }
   const std::size_t bytes = (quick ? 32u : 256u) << 20;
   const double memset_bandwidth = write_bandwidth(bytes, true);

@@ -95,8 +95,8 @@ LimitPieces limit_pieces(const LimitSurface& surface) {
     return surface.position(faces[p], uv.x(), uv.y());
   };
   pieces.evaluate_grid = [&surface, faces, triangles](std::uint32_t p, std::span<const double> us,
-                                                      std::span<const double> vs, bool with_tangents) {
-    PatchGridSamples samples{us.size(), vs.size(), {}, {}, {}};
+                                                      std::span<const double> vs, GridSamplesView out) {
+    std::size_t index = 0;
     for (double t : vs) {
       for (double s : us) {
         const Vec2 uv = face_parameters(triangles, s, t);
@@ -109,17 +109,17 @@ LimitPieces limit_pieces(const LimitSurface& surface) {
           point.du = near.du;
           point.dv = near.dv;
         }
-        samples.points.push_back(point.position);
-        samples.normals.push_back(point.normal);
-        if (with_tangents) {
+        out.points[index] = point.position;
+        out.normals[index] = point.normal;
+        if (!out.tangents.empty()) {
           Vec3 tangent = point.du - point.du.dot(point.normal) * point.normal;
           tangent = tangent.norm() > 0.0 ? Vec3(tangent.normalized()) : point.normal.unitOrthogonal();
           const double w = point.normal.cross(tangent).dot(point.dv) < 0.0 ? -1.0 : 1.0;
-          samples.tangents.emplace_back(tangent.x(), tangent.y(), tangent.z(), w);
+          out.tangents[index] = Vec4(tangent.x(), tangent.y(), tangent.z(), w);
         }
+        ++index;
       }
     }
-    return samples;
   };
   return result;
 }

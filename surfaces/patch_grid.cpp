@@ -1,6 +1,8 @@
 #include "surfaces/patch_grid.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 #include "core/errors.h"
 #include "surfaces/surface_normal.h"
@@ -25,6 +27,116 @@ std::vector<double> uniform_parameters(std::size_t segments) {
   return ts;
 }
 
+// The net contracted in v at row b: Q_i = sum_j B_j^m(v_b) P_ij and dQ_i with B_j^m'.
+void contract_in_v(const BezierPatch3& patch, const PatchGridWeights& weights, std::size_t b, Vec3* Q, Vec3* dQ) {
+  const std::span<const double> bv = weights.v_values(b);
+  const std::span<const double> dbv = weights.v_derivatives(b);
+  for (int i = 0; i <= patch.degree_u(); ++i) {
+    Vec3 q = Vec3::Zero();
+    Vec3 dq = Vec3::Zero();
+    for (int j = 0; j <= patch.degree_v(); ++j) {
+      q += bv[j] * patch.control_point(i, j);
+      dq += dbv[j] * patch.control_point(i, j);
+    }
+    Q[i] = q;
+    dQ[i] = dq;
+  }
+}
+
+// One grid row of a patch of u-degree N, in structure-of-arrays form: points p, unit normals n
+// (where F_u x F_v is not degenerate: regular = 1), from the net contracted in v (Q, and dQ for
+// F_v) and the u tables by index first (bu[i * count + a]). Returns whether some point of the
+// row is degenerate. N is known at compile time so the sums over i stay in registers, and the
+// arrays are restrict so the compiler vectorises across the row. The sums are those of the
+// generic loop in evaluate_grid, in the same order.
+template <int N>
+bool grid_row(std::size_t count, const double* __restrict bu, const double* __restrict dbu, const Vec3* __restrict Q,
+              const Vec3* __restrict dQ, double threshold, double* __restrict px, double* __restrict py,
+              double* __restrict pz, double* __restrict nx, double* __restrict ny, double* __restrict nz,
+              double* __restrict regular) {
+  double degenerate = 0.0;
+  for (std::size_t a = 0; a < count; ++a) {
+    double x = 0.0, y = 0.0, z = 0.0, ux = 0.0, uy = 0.0, uz = 0.0, vx = 0.0, vy = 0.0, vz = 0.0;
+    for (int i = 0; i <= N; ++i) {
+      const double w = bu[static_cast<std::size_t>(i) * count + a];
+      const double dw = dbu[static_cast<std::size_t>(i) * count + a];
+      x += w * Q[i].x();
+      y += w * Q[i].y();
+      z += w * Q[i].z();
+      ux += dw * Q[i].x();
+      uy += dw * Q[i].y();
+      uz += dw * Q[i].z();
+      vx += w * dQ[i].x();
+      vy += w * dQ[i].y();
+      vz += w * dQ[i].z();
+    }
+    px[a] = x;
+    py[a] = y;
+    pz[a] = z;
+    const double cx = uy * vz - uz * vy;
+    const double cy = uz * vx - ux * vz;
+    const double cz = ux * vy - uy * vx;
+    const double norm = std::sqrt(cx * cx + cy * cy + cz * cz);
+    // No branch around the division (std::max is one), so the loop vectorises; the tiny
+    // summand only keeps it finite at norm 0, and degenerate points are redone by the caller.
+    const double inverse = 1.0 / (norm + 1e-300);
+    nx[a] = cx * inverse;
+    ny[a] = cy * inverse;
+    nz[a] = cz * inverse;
+    regular[a] = norm > threshold ? 1.0 : 0.0;
+    degenerate = norm > threshold ? degenerate : 1.0;
+  }
+  return degenerate != 0.0;
+}
+
+// Vec3s from three coordinate arrays (vectorised: the Vec3s are packed doubles).
+void interleave(std::size_t count, const double* __restrict x, const double* __restrict y, const double* __restrict z,
+                double* __restrict xyz) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is three packed doubles");
+  for (std::size_t a = 0; a < count; ++a) {
+    xyz[3 * a] = x[a];
+    xyz[3 * a + 1] = y[a];
+    xyz[3 * a + 2] = z[a];
+  }
+}
+
+// Points and unit normals (no tangents) of a patch of u-degree N, a row at a time (grid_row).
+template <int N>
+void evaluate_grid_points_normals(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out,
+                                  double threshold) {
+  const std::size_t count_u = weights.us().size();
+  const std::size_t count_v = weights.vs().size();
+  std::vector<double> bu((N + 1) * count_u);
+  std::vector<double> dbu((N + 1) * count_u);
+  for (std::size_t a = 0; a < count_u; ++a) {
+    for (int i = 0; i <= N; ++i) {
+      bu[static_cast<std::size_t>(i) * count_u + a] = weights.u_values(a)[static_cast<std::size_t>(i)];
+      dbu[static_cast<std::size_t>(i) * count_u + a] = weights.u_derivatives(a)[static_cast<std::size_t>(i)];
+    }
+  }
+  std::vector<double> row(7 * count_u);
+  double* px = row.data();
+  double* py = px + count_u;
+  double* pz = py + count_u;
+  double* nx = pz + count_u;
+  double* ny = nx + count_u;
+  double* nz = ny + count_u;
+  double* regular = nz + count_u;
+  for (std::size_t b = 0; b < count_v; ++b) {
+    std::array<Vec3, N + 1> Q;
+    std::array<Vec3, N + 1> dQ;
+    contract_in_v(patch, weights, b, Q.data(), dQ.data());
+    const bool degenerate =
+        grid_row<N>(count_u, bu.data(), dbu.data(), Q.data(), dQ.data(), threshold, px, py, pz, nx, ny, nz, regular);
+    interleave(count_u, px, py, pz, out.points[count_u * b].data());
+    interleave(count_u, nx, ny, nz, out.normals[count_u * b].data());
+    if (!degenerate) continue;
+    for (std::size_t a = 0; a < count_u; ++a) {
+      if (regular[a] == 0.0) out.normals[a + count_u * b] = unit_normal(patch, weights.us()[a], weights.vs()[b]);
+    }
+  }
+}
+
 }  // namespace
 
 PatchGridWeights::PatchGridWeights(int n, int m, std::span<const double> us, std::span<const double> vs)
@@ -40,38 +152,47 @@ PatchGridWeights PatchGridWeights::uniform(int n, int m, std::size_t segments_u,
 }
 
 PatchGridSamples evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights, bool with_tangents) {
+  PatchGridSamples samples{weights.us().size(), weights.vs().size(), {}, {}, {}};
+  samples.points.resize(samples.count_u * samples.count_v);
+  samples.normals.resize(samples.points.size());
+  if (with_tangents) samples.tangents.resize(samples.points.size());
+  evaluate_grid(patch, weights, {samples.points, samples.normals, samples.tangents});
+  return samples;
+}
+
+void evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out) {
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   if (weights.degree_u() != n || weights.degree_v() != m) {
     throw InvalidInput(detail::message("evaluate_grid: weights of degrees (", weights.degree_u(), ", ", weights.degree_v(),
                                        ") for a patch of degrees (", n, ", ", m, ")"));
   }
-  PatchGridSamples samples{weights.us().size(), weights.vs().size(), {}, {}, {}};
-  samples.points.resize(samples.count_u * samples.count_v);
-  samples.normals.resize(samples.points.size());
-  if (with_tangents) samples.tangents.resize(samples.points.size());
-  std::vector<Vec3> Q(static_cast<std::size_t>(n) + 1);
-  std::vector<Vec3> dQ(static_cast<std::size_t>(n) + 1);
+  const std::size_t count_u = weights.us().size();
+  const std::size_t count_v = weights.vs().size();
+  const std::size_t count = count_u * count_v;
+  const bool with_tangents = !out.tangents.empty();
+  if (out.points.size() < count || out.normals.size() < count || (with_tangents && out.tangents.size() < count)) {
+    throw InvalidInput(detail::message("evaluate_grid: room for ", std::min(out.points.size(), out.normals.size()),
+                                       " samples, the grid has ", count));
+  }
   // Degeneracy is judged as in unit_normal: relative to the net's size.
   Eigen::AlignedBox3d box(patch.control_points().front());
   for (const Vec3& p : patch.control_points()) box.extend(p);
   const double scale = box.diagonal().norm();
   const double threshold = 1e-12 * std::max(n * m, 1) * scale * scale;
   const double derivative_threshold = 1e-12 * std::max({n, m, 1}) * scale;
-  for (std::size_t b = 0; b < samples.count_v; ++b) {
-    const std::span<const double> bv = weights.v_values(b);
-    const std::span<const double> dbv = weights.v_derivatives(b);
-    for (int i = 0; i <= n; ++i) {
-      Vec3 q = Vec3::Zero();
-      Vec3 dq = Vec3::Zero();
-      for (int j = 0; j <= m; ++j) {
-        q += bv[j] * patch.control_point(i, j);
-        dq += dbv[j] * patch.control_point(i, j);
-      }
-      Q[i] = q;
-      dQ[i] = dq;
-    }
-    for (std::size_t a = 0; a < samples.count_u; ++a) {
+  // The usual degrees (the teapot's are 3) without tangents take the vectorised path.
+  if (!with_tangents && n >= 1 && n <= 3) {
+    if (n == 1) evaluate_grid_points_normals<1>(patch, weights, out, threshold);
+    if (n == 2) evaluate_grid_points_normals<2>(patch, weights, out, threshold);
+    if (n == 3) evaluate_grid_points_normals<3>(patch, weights, out, threshold);
+    return;
+  }
+  std::vector<Vec3> Q(static_cast<std::size_t>(n) + 1);
+  std::vector<Vec3> dQ(static_cast<std::size_t>(n) + 1);
+  for (std::size_t b = 0; b < count_v; ++b) {
+    contract_in_v(patch, weights, b, Q.data(), dQ.data());
+    for (std::size_t a = 0; a < count_u; ++a) {
       const std::span<const double> bu = weights.u_values(a);
       const std::span<const double> dbu = weights.u_derivatives(a);
       Vec3 point = Vec3::Zero();
@@ -82,24 +203,24 @@ PatchGridSamples evaluate_grid(const BezierPatch3& patch, const PatchGridWeights
         du += dbu[i] * Q[i];
         dv += bu[i] * dQ[i];
       }
-      const std::size_t index = a + samples.count_u * b;
-      samples.points[index] = point;
+      const std::size_t index = a + count_u * b;
+      out.points[index] = point;
       const Vec3 normal = du.cross(dv);
-      const bool regular = normal.norm() > threshold;
-      const Vec3 unit = regular ? normal.normalized() : unit_normal(patch, weights.us()[a], weights.vs()[b]);
-      samples.normals[index] = unit;
+      const double length = normal.norm();
+      const bool regular = length > threshold;
+      const Vec3 unit = regular ? Vec3(normal / length) : unit_normal(patch, weights.us()[a], weights.vs()[b]);
+      out.normals[index] = unit;
       if (!with_tangents) continue;
       const Vec3 tangent = du - du.dot(unit) * unit;
       if (regular && tangent.norm() > derivative_threshold) {
         // Regular point: F_u lies in the tangent plane and (n x F_u) . F_v = n . (F_u x F_v) > 0.
         const Vec3 t = tangent.normalized();
-        samples.tangents[index] = Vec4(t.x(), t.y(), t.z(), 1.0);
+        out.tangents[index] = Vec4(t.x(), t.y(), t.z(), 1.0);
       } else {
-        samples.tangents[index] = unit_tangent(patch, weights.us()[a], weights.vs()[b], unit);
+        out.tangents[index] = unit_tangent(patch, weights.us()[a], weights.vs()[b], unit);
       }
     }
   }
-  return samples;
 }
 
 }  // namespace patchwork

@@ -61,6 +61,20 @@ struct PatchGridSamples {
   std::vector<Vec4> tangents;
 };
 
+/// Where evaluate_grid writes, in storage the caller owns (a tessellator's output arrays): one
+/// slot per grid point, row by row as in PatchGridSamples.
+struct GridSamplesView {
+  std::span<Vec3> points;
+  std::span<Vec3> normals;
+  /// Empty: no tangents.
+  std::span<Vec4> tangents;
+};
+
+/// evaluate_grid(patch, weights, with_tangents) into `out` (tangents if out.tangents is not empty).
+/// \throws InvalidInput if the weights' degrees differ from the patch's, or a span of `out` is
+///         shorter than the grid (tangents: empty or at least as long).
+void evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out);
+
 /// F and the unit normal at every grid point (the limit normal where F_u x F_v vanishes), and the
 /// unit tangents if `with_tangents`.
 /// \throws InvalidInput if the weights' degrees differ from the patch's.

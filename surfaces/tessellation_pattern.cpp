@@ -106,7 +106,7 @@ std::uint32_t first_edge_point(const PatternRates& rates, int edge) {
   return PatternIndex(rates, std::max(rates.inner_u, 2), std::max(rates.inner_v, 2)).edge(edge, 1);
 }
 
-TessellationPattern make_pattern(const PatternRates& rates) {
+TessellationPattern make_pattern_boundary(const PatternRates& rates) {
   if (rates.inner_u < 1 || rates.inner_v < 1 ||
       std::any_of(rates.edges.begin(), rates.edges.end(), [](int e) { return e < 1; })) {
     throw InvalidInput(detail::message("make_pattern: rates (", rates.inner_u, ", ", rates.inner_v, "; ", rates.edges[0],
@@ -124,9 +124,8 @@ TessellationPattern make_pattern(const PatternRates& rates) {
     throw InvalidInput(detail::message("make_pattern: rates (", nu, ", ", nv, ") give more than 2^31 points"));
   }
   const PatternIndex index(rates, nu, nv);
-  pattern.points.reserve(static_cast<std::size_t>(boundary) + static_cast<std::size_t>(nu + 1) * (nv + 1));
+  pattern.points.reserve(static_cast<std::size_t>(boundary));
   add_boundary_points(rates, pattern.points);
-  add_interior_points(nu, nv, pattern.points);
 
   if (pattern.grid) {
     const auto at = [&](int i, int j) -> std::uint32_t {
@@ -141,34 +140,51 @@ TessellationPattern make_pattern(const PatternRates& rates) {
       if (left) return index.edge(3, j);
       return index.interior(i, j);
     };
-    pattern.triangles.reserve(2 * static_cast<std::size_t>(nu) * nv);
-    add_grid_cells(0, nu, 0, nv, at, pattern.triangles);
+    // The outer ring of cells: rows 0 and nv - 1 whole, columns 0 and nu - 1 between them.
+    pattern.triangles.reserve(4 * static_cast<std::size_t>(nu + nv));
+    for (int j = 0; j < nv; ++j) {
+      if (j == 0 || j == nv - 1) {
+        add_grid_cells(0, nu, j, j + 1, at, pattern.triangles);
+      } else {
+        add_grid_cells(0, 1, j, j + 1, at, pattern.triangles);
+        if (nu > 1) add_grid_cells(nu - 1, nu, j, j + 1, at, pattern.triangles);
+      }
+    }
     return pattern;
   }
 
-  // The inner grid without its outer ring of cells, then one stitched strip per side.
-  const auto inner_at = [&](int i, int j) { return index.interior(i, j); };
-  add_grid_cells(1, nu - 1, 1, nv - 1, inner_at, pattern.triangles);
+  // One stitched strip per side, joining it to the inner grid's outermost points.
   for (int side = 0; side < 4; ++side) {
     const int e = rates.edges[side];
     std::vector<std::uint32_t> outer{index.corner(side)};
     // Counter-clockwise: v0 and u1 run with their boundary_curve, v1 and u0 against it.
     for (int k = 1; k < e; ++k) outer.push_back(index.edge(side, side < 2 ? k : e - k));
     outer.push_back(index.corner((side + 1) % 4));
-    std::vector<std::uint32_t> inner;
+    std::vector<std::uint32_t> inner_row;
     const int along = side % 2 == 0 ? nu : nv;
     for (int t = 1; t < along; ++t) {
       switch (side) {
-        case 0: inner.push_back(index.interior(t, 1)); break;
-        case 1: inner.push_back(index.interior(nu - 1, t)); break;
-        case 2: inner.push_back(index.interior(nu - t, nv - 1)); break;
-        default: inner.push_back(index.interior(1, nv - t)); break;
+        case 0: inner_row.push_back(index.interior(t, 1)); break;
+        case 1: inner_row.push_back(index.interior(nu - 1, t)); break;
+        case 2: inner_row.push_back(index.interior(nu - t, nv - 1)); break;
+        default: inner_row.push_back(index.interior(1, nv - t)); break;
       }
     }
-    stitch_side(outer, inner, along, pattern.triangles);
+    stitch_side(outer, inner_row, along, pattern.triangles);
   }
-  PATCHWORK_ASSERT(pattern.points.size() == index.interior_offset() + static_cast<std::size_t>(nu - 1) * (nv - 1),
-                   "pattern point count");
+  return pattern;
+}
+
+TessellationPattern make_pattern(const PatternRates& rates) {
+  TessellationPattern pattern = make_pattern_boundary(rates);
+  const InnerGrid inner = inner_grid(rates);
+  const PatternIndex index(rates, inner.u, inner.v);
+  PATCHWORK_ASSERT(pattern.points.size() == index.interior_offset(), "boundary points come first");
+  pattern.points.reserve(pattern.points.size() + static_cast<std::size_t>(inner.u - 1) * (inner.v - 1));
+  add_interior_points(inner.u, inner.v, pattern.points);
+  pattern.triangles.reserve(pattern.triangles.size() + 2 * static_cast<std::size_t>(std::max(inner.u - 2, 0)) *
+                                                          static_cast<std::size_t>(std::max(inner.v - 2, 0)));
+  for_each_inner_triangle(inner, index.interior_offset(), [&](const Triangle& t) { pattern.triangles.push_back(t); });
   return pattern;
 }
 

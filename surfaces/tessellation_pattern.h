@@ -68,9 +68,32 @@ struct InnerGrid {
 /// The inner grid of the pattern for `rates`.
 InnerGrid inner_grid(const PatternRates& rates);
 
-/// The pattern for `rates`. \throws InvalidInput if a rate is < 1 or the pattern would have
+/// The pattern for `rates`: make_pattern_boundary's points and triangles, then the interior
+/// points and the inner cells. \throws InvalidInput if a rate is < 1 or the pattern would have
 /// more than 2^31 points.
 TessellationPattern make_pattern(const PatternRates& rates);
+
+/// Calls f(triangle) for the triangles of the inner cells [1, N_u - 1) x [1, N_v - 1) of an inner
+/// grid N, in make_pattern's order and numbering, given the index of its first interior point.
+template <class F>
+void for_each_inner_triangle(const InnerGrid& inner, std::uint32_t first_interior, const F& f) {
+  const auto row = static_cast<std::uint32_t>(inner.u - 1);
+  for (int j = 1; j + 1 < inner.v; ++j) {
+    for (int i = 1; i + 1 < inner.u; ++i) {
+      const std::uint32_t a = first_interior + static_cast<std::uint32_t>(i - 1) + row * static_cast<std::uint32_t>(j - 1);
+      f(std::array<std::uint32_t, 3>{a, a + 1, a + row + 1});
+      f(std::array<std::uint32_t, 3>{a, a + row + 1, a + row});
+    }
+  }
+}
+
+/// The part of make_pattern(rates) that touches the boundary: the corner and edge points and
+/// every triangle with a corner among them, indexed as in the whole pattern. What is left out is
+/// regular: the interior points (i / N_u, j / N_v), 1 <= i < N_u, 1 <= j < N_v, row by row (N the
+/// inner grid), and the cells [1, N_u - 1) x [1, N_v - 1) between them, each split along its
+/// (i, j)-(i+1, j+1) diagonal; a tessellator writes those straight into its output.
+/// \throws InvalidInput as make_pattern does.
+TessellationPattern make_pattern_boundary(const PatternRates& rates);
 
 /// Index of the first point of edge `edge` in a pattern with these rates (its step 1).
 std::uint32_t first_edge_point(const PatternRates& rates, int edge);

@@ -61,24 +61,41 @@ struct EdgeSlot {
   bool reversed = false;  // runs against the owner's direction
 };
 
+// One patch's part of the tessellation. Only what touches its boundary is kept per patch (the
+// boundary points, their attributes and the triangles with a corner among them); the interior
+// points and inner cells are regular (make_pattern_boundary) and are written straight into the
+// output, so a large grid costs no intermediate copies.
 struct PatchOutput {
-  TessellationPattern pattern;
-  std::vector<std::uint32_t> welded;  // per pattern point
+  InnerGrid inner{1, 1, true};
+  TessellationPattern pattern;        // make_pattern_boundary
+  std::vector<std::uint32_t> welded;  // per boundary point
   std::vector<bool> owner;            // this patch supplies the welded point's position
-  // Attributes of the pattern points: those before first_interior (corners and sides) here, the
-  // interior grid as evaluated (kept as it came, not copied: at large rates it is most of them).
-  std::vector<Vec3> positions;
+  std::vector<Vec3> positions;        // per boundary point, until assembled
   std::vector<Vec3> normals;
   std::vector<Vec4> tangents;
-  std::size_t first_interior = 0;
-  PatchGridSamples interior{0, 0, {}, {}, {}};
-
-  const Vec3& position(std::size_t k) const { return k < first_interior ? positions[k] : interior.points[k - first_interior]; }
-  const Vec3& normal(std::size_t k) const { return k < first_interior ? normals[k] : interior.normals[k - first_interior]; }
-  const Vec4& tangent(std::size_t k) const { return k < first_interior ? tangents[k] : interior.tangents[k - first_interior]; }
-  std::vector<Triangle> kept;     // pattern-local
-  std::vector<Triangle> dropped;  // use one welded point twice (at a collapsed edge)
+  std::vector<Triangle> kept;         // boundary triangles, pattern-local
+  std::vector<Triangle> dropped;      // use one welded point twice (at a collapsed edge)
+  std::vector<std::uint32_t> vertex;  // render vertex of each boundary point (no_id: unused)
+  std::uint32_t first_vertex = 0;     // render vertex of interior point 0 (then row by row)
+  std::size_t first_triangle = 0;
+  // Some interior point is in no kept triangle (possible only next to collapsed edges when the
+  // inner grid has 2 segments in a direction): the assembled mesh has unused vertices to drop.
+  bool unused_interior = false;
   double bound = 0.0;
+
+  std::uint32_t boundary_points() const { return static_cast<std::uint32_t>(pattern.points.size()); }
+  std::size_t interior_points() const { return static_cast<std::size_t>(inner.u - 1) * static_cast<std::size_t>(inner.v - 1); }
+  std::size_t inner_cells() const {
+    return static_cast<std::size_t>(std::max(inner.u - 2, 0)) * static_cast<std::size_t>(std::max(inner.v - 2, 0));
+  }
+  std::size_t triangle_count() const { return kept.size() + 2 * inner_cells(); }
+  // The (u, v) of pattern point k (boundary points listed, interior points on the inner grid).
+  Vec2 uv(std::uint32_t k) const {
+    if (k < boundary_points()) return pattern.points[k].uv;
+    const std::uint32_t q = k - boundary_points();
+    const auto row = static_cast<std::uint32_t>(inner.u - 1);
+    return {static_cast<double>(q % row + 1) / inner.u, static_cast<double>(q / row + 1) / inner.v};
+  }
 };
 
 // The fewest segments per direction a piece gets: two on a curved piece, so that coarse
@@ -128,7 +145,8 @@ class Tessellator {
     PATCHWORK_ASSERT(planned == nullptr || (planned->size() == count_ && !options.camera), "one grid per piece");
   }
 
-  Tessellation run() {
+  // Tessellates into `result`, reusing its arrays' storage.
+  void run(Tessellation& result) {
     plan_patches();
     build_edge_classes();
     if (!options_.segments) raise_rates_to_bounds();
@@ -138,13 +156,15 @@ class Tessellator {
     parallel_for(count_, options_.threads, [&](std::size_t p) {
       if (!plans_[p].culled) tessellate_patch(static_cast<std::uint32_t>(p));
     });
-    Tessellation result = assemble();
-    if (options_.measure) result.measured_error = measure();
-    if (options_.optimize) {
-      optimize_vertex_cache(result);
-      optimize_vertex_fetch(result.mesh);
+    assemble(result);
+    if (options_.measure) result.measured_error = measure(result.mesh);
+    if (options_.optimize) optimize_vertex_cache(result);
+    // The vertex-fetch order also drops unused vertices (PatchOutput::unused_interior).
+    if (options_.optimize || unused_interior_) optimize_vertex_fetch(result.mesh);
+    if (unused_interior_) {
+      const auto& ids = result.mesh.position_ids;
+      result.welded_vertices = ids.empty() ? 0 : 1 + *std::max_element(ids.begin(), ids.end());
     }
-    return result;
   }
 
  private:
@@ -392,77 +412,82 @@ class Tessellator {
 
   // --- per patch ----------------------------------------------------------------------------
 
+  // The boundary part of patch p: its points' welded ids, positions and normals, its triangles
+  // (kept or dropped) and the bound of the whole pattern.
   void tessellate_patch(std::uint32_t p) {
     PatchOutput& out = outputs_[p];
     const PatternRates r = rates(p);
-    out.pattern = make_pattern(r);
+    out.inner = inner_grid(r);
+    out.pattern = make_pattern_boundary(r);
     const TessellationPattern& pattern = out.pattern;
-    const InnerGrid inner = inner_grid(r);
-    const int nu = inner.u;
-    const int nv = inner.v;
     const std::size_t count = pattern.points.size();
     out.welded.resize(count);
     out.owner.resize(count);
-    std::uint32_t interior = interior_first_[p];
     for (std::size_t k = 0; k < count; ++k) {
       const PatternPoint& point = pattern.points[k];
-      switch (point.kind) {
-        case PatternPoint::Kind::corner:
-          out.welded[k] = corner_ids_[4 * p + point.index];
-          out.owner[k] = corner_owner_[4 * p + point.index];
-          break;
-        case PatternPoint::Kind::edge: {
-          const EdgeSlot& s = slots_[p][point.index];
-          const EdgeClass& c = classes_[s.edge_class];
-          if (c.collapsed) {
-            out.welded[k] = corner_ids_[4 * p + edge_start[point.index]];
-            out.owner[k] = false;
-          } else {
-            const int step = s.reversed ? c.rate - point.step : point.step;
-            out.welded[k] = c.first_id + static_cast<std::uint32_t>(step - 1);
-            out.owner[k] = c.owner == p;
-          }
-          break;
-        }
-        case PatternPoint::Kind::interior:
-          out.welded[k] = interior++;
-          out.owner[k] = true;
-          break;
+      if (point.kind == PatternPoint::Kind::corner) {
+        out.welded[k] = corner_ids_[4 * p + point.index];
+        out.owner[k] = corner_owner_[4 * p + point.index];
+        continue;
+      }
+      PATCHWORK_ASSERT(point.kind == PatternPoint::Kind::edge, "a boundary pattern lists boundary points only");
+      const EdgeSlot& s = slots_[p][point.index];
+      const EdgeClass& c = classes_[s.edge_class];
+      if (c.collapsed) {
+        out.welded[k] = corner_ids_[4 * p + edge_start[point.index]];
+        out.owner[k] = false;
+      } else {
+        const int step = s.reversed ? c.rate - point.step : point.step;
+        out.welded[k] = c.first_id + static_cast<std::uint32_t>(step - 1);
+        out.owner[k] = c.owner == p;
       }
     }
-    evaluate(p, r, nu, nv, out);
+    evaluate_sides(p, r, out);
+    // Only boundary triangles can use one welded point twice: interior points are the patch's own.
+    const auto welded = [&](std::uint32_t k) {
+      return k < count ? out.welded[k] : interior_first_[p] + (k - static_cast<std::uint32_t>(count));
+    };
     const auto degenerate = [&](const Triangle& t) {
-      return out.welded[t[0]] == out.welded[t[1]] || out.welded[t[1]] == out.welded[t[2]] ||
-             out.welded[t[0]] == out.welded[t[2]];
+      return welded(t[0]) == welded(t[1]) || welded(t[1]) == welded(t[2]) || welded(t[0]) == welded(t[2]);
     };
     if (std::none_of(pattern.triangles.begin(), pattern.triangles.end(), degenerate)) {
       out.kept = std::move(out.pattern.triangles);  // the common case: no collapsed edge
     } else {
       for (const Triangle& t : pattern.triangles) (degenerate(t) ? out.dropped : out.kept).push_back(t);
+      out.pattern.triangles = {};
+      // Interior points outside the inner cells (2 segments in a direction) hang on boundary
+      // triangles only, which may all be dropped.
+      if (out.inner.u == 2 || out.inner.v == 2) {
+        std::vector<bool> used(out.interior_points(), false);
+        for (const Triangle& t : out.kept) {
+          for (std::uint32_t k : t) {
+            if (k >= count) used[k - count] = true;
+          }
+        }
+        for_each_inner_triangle(out.inner, 0, [&](const Triangle& t) {
+          for (std::uint32_t q : t) used[q] = true;
+        });
+        out.unused_interior = std::find(used.begin(), used.end(), false) != used.end();
+      }
     }
-    // (Kept and dropped triangles together are the pattern's, whose bound raising computed.)
-    out.bound = pattern.grid                                  ? flatness_bound(plans_[p].bounds, 1.0 / nu, 1.0 / nv)
-                : same_rates(r, plans_[p].checked_rates) ? plans_[p].checked_bound
-                                                          : pattern_bound(out.kept, out.dropped, pattern.points,
-                                                                          plans_[p].bounds, nu, nv);
+    // The bound covers the whole pattern, dropped triangles included (their parameter triangles
+    // map onto a mesh edge, which must be as close to the surface).
+    const PatchPlan& plan = plans_[p];
+    out.bound = pattern.grid                        ? flatness_bound(plan.bounds, 1.0 / out.inner.u, 1.0 / out.inner.v)
+                : same_rates(r, plan.checked_rates) ? plan.checked_bound
+                                                    : pattern_bound(make_pattern(r), plan.bounds, out.inner.u, out.inner.v);
   }
 
-  // Positions, normals (and tangents) of every pattern point: the interior as one grid, each
-  // side (with its corners) as a one-row grid.
-  void evaluate(std::uint32_t p, const PatternRates& r, int nu, int nv, PatchOutput& out) const {
+  // Positions, normals (and tangents) of the boundary points, each side (with its corners) as a
+  // one-row grid.
+  void evaluate_sides(std::uint32_t p, const PatternRates& r, PatchOutput& out) const {
     const std::size_t count = out.pattern.points.size();
-    // Interior points follow the sides (first_edge_point numbering), row by row as evaluate_grid
-    // stores them.
-    out.first_interior = nu < 2 || nv < 2 ? count : first_edge_point(r, 3) + static_cast<std::size_t>(r.edges[3] - 1);
-    out.positions.resize(out.first_interior);
-    out.normals.resize(out.first_interior);
-    if (options_.tangents) out.tangents.resize(out.first_interior);
-    const auto store = [&](const PatchGridSamples& samples, std::size_t sample, std::uint32_t point) {
-      PATCHWORK_ASSERT(point < out.first_interior, "side points come before the interior");
-      out.positions[point] = samples.points[sample];
-      out.normals[point] = samples.normals[sample];
-      if (options_.tangents) out.tangents[point] = samples.tangents[sample];
-    };
+    out.positions.resize(count);
+    out.normals.resize(count);
+    if (options_.tangents) out.tangents.resize(count);
+    std::vector<Vec3> points;
+    std::vector<Vec3> normals;
+    std::vector<Vec4> tangents;
     const auto ramp = [](int from, int to, int rate) {
       std::vector<double> ts;
       for (int k = from; k <= to; ++k) ts.push_back(static_cast<double>(k) / rate);
@@ -474,9 +499,16 @@ class Tessellator {
       const bool along_u = k % 2 == 0;
       const std::vector<double> ts = along_u ? ramp(0, e, e) : ramp(1, e - 1, e);
       if (ts.empty()) continue;
+      points.resize(ts.size());
+      normals.resize(ts.size());
+      if (options_.tangents) tangents.resize(ts.size());
       const std::vector<double> fixed = {k == 1 || k == 2 ? 1.0 : 0.0};
-      const PatchGridSamples samples = along_u ? pieces_.evaluate_grid(p, ts, fixed, options_.tangents)
-                                               : pieces_.evaluate_grid(p, fixed, ts, options_.tangents);
+      const GridSamplesView samples{points, normals, tangents};
+      if (along_u) {
+        pieces_.evaluate_grid(p, ts, fixed, samples);
+      } else {
+        pieces_.evaluate_grid(p, fixed, ts, samples);
+      }
       const std::uint32_t first = first_edge_point(r, k);
       for (std::size_t s = 0; s < ts.size(); ++s) {
         std::uint32_t point;
@@ -489,12 +521,12 @@ class Tessellator {
         } else {
           point = first + static_cast<std::uint32_t>(s - 1);
         }
-        store(samples, s, point);
+        PATCHWORK_ASSERT(point < count, "side points are boundary points");
+        out.positions[point] = points[s];
+        out.normals[point] = normals[s];
+        if (options_.tangents) out.tangents[point] = tangents[s];
       }
     }
-    if (out.first_interior == count) return;
-    out.interior = pieces_.evaluate_grid(p, ramp(1, nu - 1, nu), ramp(1, nv - 1, nv), options_.tangents);
-    PATCHWORK_ASSERT(out.first_interior + out.interior.points.size() == count, "the interior grid ends the pattern");
   }
 
   // --- assembly -----------------------------------------------------------------------------
@@ -519,88 +551,189 @@ class Tessellator {
     return origin + 0.02 * cell + 0.96 * uv.cwiseProduct(cell);
   }
 
-  Tessellation assemble() {
-    Tessellation result;
-    result.culled_patches = culled_;
-    result.culled_triangles = culled_triangles_;
-    std::vector<Vec3> welded_positions;
-    reserve_huge(welded_positions, welded_count_);
-    welded_positions.assign(welded_count_, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+  // The mesh in three steps. (1) The boundary points of every patch become render vertices, in
+  // patch order: a welded point becomes several vertices only where its attributes differ
+  // between the patches around it. (2) Every patch gets a block of vertices for its interior
+  // points and a block of triangles, so (3) the patches write their interiors and triangles in
+  // parallel, straight into the mesh. `result`'s arrays are reused (resized, not reallocated,
+  // when they have room).
+  void assemble(Tessellation& result) {
+    // Boundary welded ids come before every interior one (number_welded_points).
+    std::uint32_t interior_base = welded_count_;
+    for (std::uint32_t p = 0; p < count_; ++p) {
+      if (!plans_[p].culled) interior_base = std::min(interior_base, interior_first_[p]);
+    }
+    welded_positions_.assign(interior_base, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
     for (const PatchOutput& out : outputs_) {
       for (std::size_t k = 0; k < out.welded.size(); ++k) {
-        if (out.owner[k]) welded_positions[out.welded[k]] = out.position(k);
+        if (out.owner[k]) welded_positions_[out.welded[k]] = out.positions[k];
       }
     }
-    RenderMesh& mesh = result.mesh;
-    std::size_t points = 0;
-    std::size_t triangles = 0;
-    for (const PatchOutput& out : outputs_) {
-      points += out.welded.size();
-      triangles += out.kept.size();
-    }
-    reserve_huge(mesh.positions, points);
-    reserve_huge(mesh.normals, points);
-    if (options_.uv != UvMode::none) reserve_huge(mesh.uvs, points);
-    if (options_.tangents) reserve_huge(mesh.tangents, points);
-    reserve_huge(mesh.position_ids, points);
-    reserve_huge(mesh.indices, 3 * triangles);
-    reserve_huge(result.triangle_patches, triangles);
-    // Render vertices of one welded point, chained: first_vertex[id] -> next_vertex[...] -> ...
-    std::vector<std::uint32_t> first_vertex(welded_count_, no_id);
+    // (1) Boundary vertices, chained per welded point: first_vertex[id] -> next_vertex[...] -> ...
+    // A vertex is known by the boundary point it was made from; its attributes are copied once
+    // the mesh has its size.
+    struct Source {
+      std::uint32_t patch;
+      std::uint32_t point;
+      std::uint32_t position_id;
+    };
+    std::vector<Source> sources;
+    std::size_t boundary_points = 0;
+    for (const PatchOutput& out : outputs_) boundary_points += out.boundary_points();
+    sources.reserve(boundary_points);
+    std::vector<std::uint32_t> first_vertex(interior_base, no_id);
     std::vector<std::uint32_t> next_vertex;
-    std::vector<std::uint32_t> dense_position(welded_count_, no_id);
+    next_vertex.reserve(boundary_points);
+    std::vector<std::uint32_t> dense_position(interior_base, no_id);
     std::uint32_t positions_used = 0;
     const double cos_crease = std::cos(options_.crease_angle);
     const bool with_uv = options_.uv != UvMode::none;
+    bool unused_interior = false;
+    double error_bound = 0.0;
+    double tolerance = 0.0;
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
-      const PatchOutput& out = outputs_[p];
-      result.error_bound = std::max(result.error_bound, out.bound);
-      result.tolerance = std::max(result.tolerance, plans_[p].tolerance);
-      std::vector<std::uint32_t> vertex_of(out.welded.size(), no_id);
+      PatchOutput& out = outputs_[p];
+      error_bound = std::max(error_bound, out.bound);
+      tolerance = std::max(tolerance, plans_[p].tolerance);
+      unused_interior = unused_interior || out.unused_interior;
+      out.vertex.assign(out.boundary_points(), no_id);
       const auto vertex = [&](std::uint32_t k) {
-        if (vertex_of[k] != no_id) return vertex_of[k];
         const std::uint32_t id = out.welded[k];
         const Vec2 uv = uv_of(p, out.pattern.points[k].uv);
         for (std::uint32_t v = first_vertex[id]; v != no_id; v = next_vertex[v]) {
+          const PatchOutput& other = outputs_[sources[v].patch];
+          const std::uint32_t j = sources[v].point;
           const bool same =
-              mesh.normals[v].dot(out.normal(k)) >= cos_crease && (!with_uv || mesh.uvs[v] == uv) &&
-              (!options_.tangents || (mesh.tangents[v].w() == out.tangent(k).w() &&
-                                      mesh.tangents[v].head<3>().dot(out.tangent(k).head<3>()) >= cos_crease));
-          if (same) return vertex_of[k] = v;
+              other.normals[j].dot(out.normals[k]) >= cos_crease &&
+              (!with_uv || uv_of(sources[v].patch, other.pattern.points[j].uv) == uv) &&
+              (!options_.tangents || (other.tangents[j].w() == out.tangents[k].w() &&
+                                      other.tangents[j].head<3>().dot(out.tangents[k].head<3>()) >= cos_crease));
+          if (same) return v;
         }
-        const auto v = static_cast<std::uint32_t>(mesh.positions.size());
-        mesh.positions.push_back(welded_positions[id]);
-        mesh.normals.push_back(out.normal(k));
-        if (with_uv) mesh.uvs.push_back(uv);
-        if (options_.tangents) mesh.tangents.push_back(out.tangent(k));
+        const auto v = static_cast<std::uint32_t>(sources.size());
         if (dense_position[id] == no_id) dense_position[id] = positions_used++;
-        mesh.position_ids.push_back(dense_position[id]);
+        sources.push_back({p, k, dense_position[id]});
         next_vertex.push_back(first_vertex[id]);
         first_vertex[id] = v;
-        return vertex_of[k] = v;
+        return v;
       };
       for (const Triangle& t : out.kept) {
-        for (std::uint32_t corner : t) mesh.indices.push_back(vertex(corner));
-        result.triangle_patches.push_back(patch_of(p));
+        for (std::uint32_t k : t) {
+          if (k < out.boundary_points() && out.vertex[k] == no_id) out.vertex[k] = vertex(k);
+        }
       }
-      // What measuring needs stays (parameters, welded ids, triangles); the rest is in the mesh.
-      PatchOutput& done = outputs_[p];
-      done.positions = {};
-      done.normals = {};
-      done.tangents = {};
-      done.interior = PatchGridSamples{0, 0, {}, {}, {}};
     }
-    result.welded_vertices = positions_used;
-    welded_positions_ = std::move(welded_positions);
-    return result;
+    // (2) Blocks of vertices and triangles.
+    std::size_t vertices = sources.size();
+    std::size_t triangles = 0;
+    for (std::uint32_t p = 0; p < count_; ++p) {
+      if (plans_[p].culled) continue;
+      PatchOutput& out = outputs_[p];
+      out.first_vertex = static_cast<std::uint32_t>(vertices);
+      out.first_triangle = triangles;
+      vertices += out.interior_points();
+      triangles += out.triangle_count();
+    }
+    if (vertices > 0xfffffffeu) {
+      throw InvalidInput(detail::message("tessellate: ", vertices, " vertices exceed 32-bit indices"));
+    }
+    result.culled_patches = culled_;
+    result.culled_triangles = culled_triangles_;
+    result.error_bound = error_bound;
+    result.tolerance = tolerance;
+    result.measured_error = 0.0;
+    RenderMesh& mesh = result.mesh;
+    const auto resize = [](auto& array, std::size_t size) {
+      if (array.capacity() < size) {
+        array = {};
+        reserve_huge(array, size);
+      }
+      array.resize(size);
+    };
+    resize(mesh.positions, vertices);
+    resize(mesh.normals, vertices);
+    resize(mesh.uvs, with_uv ? vertices : 0);
+    resize(mesh.tangents, options_.tangents ? vertices : 0);
+    resize(mesh.position_ids, vertices);
+    resize(mesh.indices, 3 * triangles);
+    resize(result.triangle_patches, triangles);
+    for (std::size_t v = 0; v < sources.size(); ++v) {
+      const Source& source = sources[v];
+      const PatchOutput& out = outputs_[source.patch];
+      mesh.positions[v] = welded_positions_[out.welded[source.point]];
+      mesh.normals[v] = out.normals[source.point];
+      if (with_uv) mesh.uvs[v] = uv_of(source.patch, out.pattern.points[source.point].uv);
+      if (options_.tangents) mesh.tangents[v] = out.tangents[source.point];
+      mesh.position_ids[v] = source.position_id;
+    }
+    for (PatchOutput& out : outputs_) {
+      out.positions = {};
+      out.normals = {};
+      out.tangents = {};
+    }
+    // (3) Interiors and triangles, in parallel. Interior positions get ids after the boundary's,
+    // in welded order.
+    parallel_for(count_, options_.threads, [&](std::size_t q) {
+      const auto p = static_cast<std::uint32_t>(q);
+      if (!plans_[p].culled) write_patch(p, mesh, result.triangle_patches, positions_used - interior_base);
+    });
+    result.welded_vertices = positions_used + (welded_count_ - interior_base);
+    unused_interior_ = unused_interior;
+  }
+
+  // Patch p's interior vertices and all its triangles, into their blocks of `mesh`.
+  void write_patch(std::uint32_t p, RenderMesh& mesh, std::vector<std::uint32_t>& triangle_patches,
+                   std::uint32_t position_offset) const {
+    const PatchOutput& out = outputs_[p];
+    const std::size_t interior = out.interior_points();
+    if (interior > 0) {
+      const std::size_t first = out.first_vertex;
+      const auto ramp = [](int rate) {
+        std::vector<double> ts(static_cast<std::size_t>(rate - 1));
+        for (int k = 1; k < rate; ++k) ts[static_cast<std::size_t>(k - 1)] = static_cast<double>(k) / rate;
+        return ts;
+      };
+      const std::vector<double> us = ramp(out.inner.u);
+      const std::vector<double> vs = ramp(out.inner.v);
+      const std::span<Vec4> tangents =
+          options_.tangents ? std::span<Vec4>(mesh.tangents).subspan(first, interior) : std::span<Vec4>();
+      pieces_.evaluate_grid(p, us, vs,
+                            {std::span<Vec3>(mesh.positions).subspan(first, interior),
+                             std::span<Vec3>(mesh.normals).subspan(first, interior), tangents});
+      const std::uint32_t position = interior_first_[p] + position_offset;
+      for (std::size_t k = 0; k < interior; ++k) mesh.position_ids[first + k] = position + static_cast<std::uint32_t>(k);
+      if (options_.uv != UvMode::none) {
+        // uv_of is affine in (u, v).
+        const Vec2 origin = uv_of(p, Vec2(0, 0));
+        const Vec2 scale = uv_of(p, Vec2(1, 1)) - origin;
+        Vec2* uv = mesh.uvs.data() + first;
+        for (const double v : vs) {
+          for (const double u : us) *uv++ = origin + scale.cwiseProduct(Vec2(u, v));
+        }
+      }
+    }
+    const std::uint32_t boundary = out.boundary_points();
+    const std::uint32_t interior_shift = out.first_vertex - boundary;
+    std::uint32_t* index = mesh.indices.data() + 3 * out.first_triangle;
+    for (const Triangle& t : out.kept) {
+      for (std::uint32_t k : t) *index++ = k < boundary ? out.vertex[k] : k + interior_shift;
+    }
+    for_each_inner_triangle(out.inner, out.first_vertex, [&](const Triangle& t) {
+      index[0] = t[0];
+      index[1] = t[1];
+      index[2] = t[2];
+      index += 3;
+    });
+    std::fill_n(triangle_patches.begin() + static_cast<std::ptrdiff_t>(out.first_triangle), out.triangle_count(),
+                patch_of(p));
   }
 
   // --- measurement --------------------------------------------------------------------------
 
   // e_par: |S(u,v) - L(u,v)| at the corners, edge midpoints, centroid and three inner points of
   // every parameter triangle, L the linear interpolant of the mesh positions.
-  double measure() const {
+  double measure(const RenderMesh& mesh) const {
     static constexpr std::array<std::array<double, 3>, 10> samples = {{{1, 0, 0},
                                                                        {0, 1, 0},
                                                                        {0, 0, 1},
@@ -619,20 +752,25 @@ class Tessellator {
     parallel_for(tessellated.size(), options_.threads, [&](std::size_t q) {
       const std::uint32_t p = tessellated[q];
       const PatchOutput& out = outputs_[p];
+      const std::uint32_t boundary = out.boundary_points();
+      const auto position = [&](std::uint32_t k) -> const Vec3& {
+        return k < boundary ? welded_positions_[out.welded[k]] : mesh.positions[out.first_vertex + (k - boundary)];
+      };
       double error = 0.0;
-      for (const auto* list : {&out.kept, &out.dropped}) {
-        for (const Triangle& t : *list) {
-          for (const auto& w : samples) {
-            Vec2 uv = Vec2::Zero();
-            Vec3 linear = Vec3::Zero();
-            for (int c = 0; c < 3; ++c) {
-              uv += w[c] * out.pattern.points[t[c]].uv;
-              linear += w[c] * welded_positions_[out.welded[t[c]]];
-            }
-            error = std::max(error, (pieces_.evaluate(p, uv.x(), uv.y()) - linear).norm());
+      const auto sample = [&](const Triangle& t) {
+        for (const auto& w : samples) {
+          Vec2 uv = Vec2::Zero();
+          Vec3 linear = Vec3::Zero();
+          for (int c = 0; c < 3; ++c) {
+            uv += w[c] * out.uv(t[c]);
+            linear += w[c] * position(t[c]);
           }
+          error = std::max(error, (pieces_.evaluate(p, uv.x(), uv.y()) - linear).norm());
         }
-      }
+      };
+      for (const Triangle& t : out.kept) sample(t);
+      for (const Triangle& t : out.dropped) sample(t);
+      for_each_inner_triangle(out.inner, boundary, sample);
       errors[q] = error;
     });
     return errors.empty() ? 0.0 : *std::max_element(errors.begin(), errors.end());
@@ -728,7 +866,8 @@ class Tessellator {
   std::vector<std::uint32_t> interior_first_;
   std::uint32_t welded_count_ = 0;
   std::vector<PatchOutput> outputs_;
-  std::vector<Vec3> welded_positions_;
+  std::vector<Vec3> welded_positions_;  // of the boundary points, by welded id
+  bool unused_interior_ = false;
   std::size_t culled_ = 0;
   std::int64_t culled_triangles_ = 0;
 };
@@ -736,7 +875,9 @@ class Tessellator {
 }  // namespace
 
 Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& options) {
-  return Tessellator(pieces, options).run();
+  Tessellation result;
+  Tessellator(pieces, options).run(result);
+  return result;
 }
 
 namespace {
@@ -784,9 +925,9 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     pieces.collapsed = set.collapsed_edges();
     for (std::size_t p = 0; p < patches.size(); ++p) pieces.bounds.push_back(split_bounds(cells[p], 1, 0, 0));
     pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
-                                      bool with_tangents) {
+                                      GridSamplesView out) {
       const BezierPatch3& patch = patches[p];
-      return evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), us, vs), with_tangents);
+      evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), us, vs), out);
     };
     pieces.evaluate = [&patches](std::uint32_t p, double u, double v) { return patches[p].evaluate(u, v); };
     return pieces;
@@ -835,15 +976,14 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
   }
   const std::vector<SurfacePieces::Domain>& domains = pieces.domains;
   pieces.evaluate_grid = [&patches, domains](std::uint32_t q, std::span<const double> us, std::span<const double> vs,
-                                             bool with_tangents) {
+                                             GridSamplesView out) {
     const SurfacePieces::Domain& d = domains[q];
     std::vector<double> patch_us(us.begin(), us.end());
     std::vector<double> patch_vs(vs.begin(), vs.end());
     for (double& u : patch_us) u = d.u0 + d.size * u;
     for (double& v : patch_vs) v = d.v0 + d.size * v;
     const BezierPatch3& patch = patches[d.patch];
-    return evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), patch_us, patch_vs),
-                         with_tangents);
+    evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), patch_us, patch_vs), out);
   };
   pieces.evaluate = [&patches, domains](std::uint32_t q, double u, double v) {
     const SurfacePieces::Domain& d = domains[q];
@@ -887,6 +1027,12 @@ SurfacePieces split_surface_pieces(const PatchSet& set, int k, bool tight_diagon
 }
 
 Tessellation tessellate(const PatchSet& set, const TessellationOptions& options) {
+  Tessellation result;
+  tessellate(set, options, result);
+  return result;
+}
+
+void tessellate(const PatchSet& set, const TessellationOptions& options, Tessellation& result) {
   const bool relative = options.relative_tolerance.has_value();
   const std::vector<std::vector<SecondDerivativeBounds>> cells = cell_bounds(set);
   const SurfacePieces whole = pieces_of(set, cells, 1, tight_or_control_diagonal(set, relative));
@@ -913,9 +1059,9 @@ Tessellation tessellate(const PatchSet& set, const TessellationOptions& options)
   }
   // The grids found for the choice are the plan's (the same bounds at the same tolerance).
   const std::vector<GridSize>* planned = best.grids.empty() ? nullptr : &best.grids;
-  if (best_k == 1) return Tessellator(whole, options, planned).run();
+  if (best_k == 1) return Tessellator(whole, options, planned).run(result);
   const SurfacePieces split = pieces_of(set, cells, best_k, whole.diagonal);
-  return Tessellator(split, options, planned).run();
+  Tessellator(split, options, planned).run(result);
 }
 
 }  // namespace patchwork

@@ -123,9 +123,9 @@ struct SurfacePieces {
   /// Diagonal of a box holding the surface (relative tolerances are fractions of it; the camera
   /// mode's near limit is 10^-3 of it).
   double diagonal = 0.0;
-  /// Piece p at every point of the grid us x vs (stored as evaluate_grid stores them).
-  std::function<PatchGridSamples(std::uint32_t p, std::span<const double> us, std::span<const double> vs,
-                                 bool with_tangents)>
+  /// Piece p at every point of the grid us x vs, into `out` (row by row as evaluate_grid stores
+  /// them; tangents when out.tangents is not empty).
+  std::function<void(std::uint32_t p, std::span<const double> us, std::span<const double> vs, GridSamplesView out)>
       evaluate_grid;
   /// One point of piece p.
   std::function<Vec3(std::uint32_t p, double u, double v)> evaluate;
@@ -167,5 +167,10 @@ SurfacePieces split_surface_pieces(const PatchSet& set, int k, bool tight_diagon
 ///         positive and finite, segments < 1, the camera is malformed, or the triangle count would
 ///         exceed max_triangles (the message gives the count).
 Tessellation tessellate(const PatchSet& set, const TessellationOptions& options);
+
+/// tessellate(set, options) into `result`, reusing the storage of its arrays: a caller that
+/// tessellates again and again (a changing view, an animation) pays for fresh memory once.
+/// \throws as tessellate(set, options) does, before `result` is changed.
+void tessellate(const PatchSet& set, const TessellationOptions& options, Tessellation& result);
 
 }  // namespace patchwork
