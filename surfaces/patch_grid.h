@@ -75,6 +75,12 @@ struct GridSamplesView {
 ///         shorter than the grid (tangents: empty or at least as long).
 void evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out);
 
+namespace detail {
+/// evaluate_grid(patch, weights, out) without the instruction-set dispatch (AVX2 where the
+/// processor has it): the reference the dispatched kernel must match bit for bit (tests).
+void evaluate_grid_portable(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out);
+}  // namespace detail
+
 /// F and the unit normal at every grid point (the limit normal where F_u x F_v vanishes), and the
 /// unit tangents if `with_tangents`.
 /// \throws InvalidInput if the weights' degrees differ from the patch's.

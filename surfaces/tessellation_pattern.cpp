@@ -107,14 +107,21 @@ std::uint32_t first_edge_point(const PatternRates& rates, int edge) {
 }
 
 TessellationPattern make_pattern_boundary(const PatternRates& rates) {
+  TessellationPattern pattern;
+  make_pattern_boundary(rates, pattern);
+  return pattern;
+}
+
+void make_pattern_boundary(const PatternRates& rates, TessellationPattern& pattern) {
   if (rates.inner_u < 1 || rates.inner_v < 1 ||
       std::any_of(rates.edges.begin(), rates.edges.end(), [](int e) { return e < 1; })) {
     throw InvalidInput(detail::message("make_pattern: rates (", rates.inner_u, ", ", rates.inner_v, "; ", rates.edges[0],
                                        ", ", rates.edges[1], ", ", rates.edges[2], ", ", rates.edges[3],
                                        ") must all be at least 1"));
   }
-  TessellationPattern pattern;
   const InnerGrid inner = inner_grid(rates);
+  pattern.points.clear();
+  pattern.triangles.clear();
   pattern.grid = inner.grid;
   const int nu = inner.u;
   const int nv = inner.v;
@@ -150,7 +157,7 @@ TessellationPattern make_pattern_boundary(const PatternRates& rates) {
         if (nu > 1) add_grid_cells(nu - 1, nu, j, j + 1, at, pattern.triangles);
       }
     }
-    return pattern;
+    return;
   }
 
   // One stitched strip per side, joining it to the inner grid's outermost points.
@@ -172,7 +179,6 @@ TessellationPattern make_pattern_boundary(const PatternRates& rates) {
     }
     stitch_side(outer, inner_row, along, pattern.triangles);
   }
-  return pattern;
 }
 
 TessellationPattern make_pattern(const PatternRates& rates) {

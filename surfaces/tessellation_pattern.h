@@ -95,6 +95,9 @@ void for_each_inner_triangle(const InnerGrid& inner, std::uint32_t first_interio
 /// \throws InvalidInput as make_pattern does.
 TessellationPattern make_pattern_boundary(const PatternRates& rates);
 
+/// make_pattern_boundary(rates) into `pattern`, reusing its arrays' storage.
+void make_pattern_boundary(const PatternRates& rates, TessellationPattern& pattern);
+
 /// Index of the first point of edge `edge` in a pattern with these rates (its step 1).
 std::uint32_t first_edge_point(const PatternRates& rates, int edge);
 

@@ -61,6 +61,10 @@ struct EdgeSlot {
   bool reversed = false;  // runs against the owner's direction
 };
 
+}  // namespace
+
+namespace detail {
+
 // One patch's part of the tessellation. Only what touches its boundary is kept per patch (the
 // boundary points, their attributes and the triangles with a corner among them); the interior
 // points and inner cells are regular (make_pattern_boundary) and are written straight into the
@@ -83,6 +87,21 @@ struct PatchOutput {
   bool unused_interior = false;
   double bound = 0.0;
 
+  // Empties every array, keeping its storage for the next run.
+  void clear() {
+    pattern.points.clear();
+    pattern.triangles.clear();
+    welded.clear();
+    owner.clear();
+    positions.clear();
+    normals.clear();
+    tangents.clear();
+    kept.clear();
+    dropped.clear();
+    vertex.clear();
+    unused_interior = false;
+    bound = 0.0;
+  }
   std::uint32_t boundary_points() const { return static_cast<std::uint32_t>(pattern.points.size()); }
   std::size_t interior_points() const { return static_cast<std::size_t>(inner.u - 1) * static_cast<std::size_t>(inner.v - 1); }
   std::size_t inner_cells() const {
@@ -97,6 +116,41 @@ struct PatchOutput {
     return {static_cast<double>(q % row + 1) / inner.u, static_cast<double>(q / row + 1) / inner.v};
   }
 };
+
+// A boundary render vertex: the boundary point it was made from, and its position id.
+struct VertexSource {
+  std::uint32_t patch;
+  std::uint32_t point;
+  std::uint32_t position_id;
+};
+
+// What a run needs besides its output, kept for the next run into the same Tessellation.
+struct TessellatorScratch {
+  std::vector<PatchOutput> outputs;
+  std::vector<Vec3> welded_positions;
+  std::vector<VertexSource> sources;
+  std::vector<std::uint32_t> first_vertex;
+  std::vector<std::uint32_t> next_vertex;
+  std::vector<std::uint32_t> dense_position;
+};
+
+TessellatorScratchHandle::TessellatorScratchHandle() noexcept = default;
+TessellatorScratchHandle::~TessellatorScratchHandle() = default;
+TessellatorScratchHandle::TessellatorScratchHandle(const TessellatorScratchHandle&) noexcept {}
+TessellatorScratchHandle& TessellatorScratchHandle::operator=(const TessellatorScratchHandle&) noexcept { return *this; }
+TessellatorScratchHandle::TessellatorScratchHandle(TessellatorScratchHandle&&) noexcept = default;
+TessellatorScratchHandle& TessellatorScratchHandle::operator=(TessellatorScratchHandle&&) noexcept = default;
+TessellatorScratch& TessellatorScratchHandle::get() {
+  if (!scratch_) scratch_ = std::make_unique<TessellatorScratch>();
+  return *scratch_;
+}
+void TessellatorScratchHandle::release() noexcept { scratch_.reset(); }
+}  // namespace detail
+
+namespace {
+
+using detail::PatchOutput;
+using detail::VertexSource;
 
 // The fewest segments per direction a piece gets: two on a curved piece, so that coarse
 // tolerances keep the topology (with one, a tube of two patches, the teapot's handle, would
@@ -152,8 +206,12 @@ class Tessellator {
     if (!options_.segments) raise_rates_to_bounds();
     check_triangle_budget();
     number_welded_points();
-    outputs_.resize(count_);
+    // The per-patch arrays of the last run into `result` keep their storage (a caller tessellating
+    // again and again then allocates next to nothing).
+    outputs_ = &result.scratch.get().outputs;
+    outputs_->resize(count_);
     parallel_for(count_, options_.threads, [&](std::size_t p) {
+      (*outputs_)[p].clear();
       if (!plans_[p].culled) tessellate_patch(static_cast<std::uint32_t>(p));
     });
     assemble(result);
@@ -415,10 +473,10 @@ class Tessellator {
   // The boundary part of patch p: its points' welded ids, positions and normals, its triangles
   // (kept or dropped) and the bound of the whole pattern.
   void tessellate_patch(std::uint32_t p) {
-    PatchOutput& out = outputs_[p];
+    PatchOutput& out = (*outputs_)[p];
     const PatternRates r = rates(p);
     out.inner = inner_grid(r);
-    out.pattern = make_pattern_boundary(r);
+    make_pattern_boundary(r, out.pattern);
     const TessellationPattern& pattern = out.pattern;
     const std::size_t count = pattern.points.size();
     out.welded.resize(count);
@@ -451,10 +509,10 @@ class Tessellator {
       return welded(t[0]) == welded(t[1]) || welded(t[1]) == welded(t[2]) || welded(t[0]) == welded(t[2]);
     };
     if (std::none_of(pattern.triangles.begin(), pattern.triangles.end(), degenerate)) {
-      out.kept = std::move(out.pattern.triangles);  // the common case: no collapsed edge
+      std::swap(out.kept, out.pattern.triangles);  // the common case: no collapsed edge
     } else {
       for (const Triangle& t : pattern.triangles) (degenerate(t) ? out.dropped : out.kept).push_back(t);
-      out.pattern.triangles = {};
+      out.pattern.triangles.clear();
       // Interior points outside the inner cells (2 segments in a direction) hang on boundary
       // triangles only, which may all be dropped.
       if (out.inner.u == 2 || out.inner.v == 2) {
@@ -563,28 +621,29 @@ class Tessellator {
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (!plans_[p].culled) interior_base = std::min(interior_base, interior_first_[p]);
     }
-    welded_positions_.assign(interior_base, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
-    for (const PatchOutput& out : outputs_) {
+    welded_positions_ = &result.scratch.get().welded_positions;
+    welded_positions_->assign(interior_base, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+    for (const PatchOutput& out : *outputs_) {
       for (std::size_t k = 0; k < out.welded.size(); ++k) {
-        if (out.owner[k]) welded_positions_[out.welded[k]] = out.positions[k];
+        if (out.owner[k]) (*welded_positions_)[out.welded[k]] = out.positions[k];
       }
     }
     // (1) Boundary vertices, chained per welded point: first_vertex[id] -> next_vertex[...] -> ...
     // A vertex is known by the boundary point it was made from; its attributes are copied once
     // the mesh has its size.
-    struct Source {
-      std::uint32_t patch;
-      std::uint32_t point;
-      std::uint32_t position_id;
-    };
-    std::vector<Source> sources;
+    detail::TessellatorScratch& scratch = result.scratch.get();
+    std::vector<VertexSource>& sources = scratch.sources;
     std::size_t boundary_points = 0;
-    for (const PatchOutput& out : outputs_) boundary_points += out.boundary_points();
+    for (const PatchOutput& out : *outputs_) boundary_points += out.boundary_points();
+    sources.clear();
     sources.reserve(boundary_points);
-    std::vector<std::uint32_t> first_vertex(interior_base, no_id);
-    std::vector<std::uint32_t> next_vertex;
+    std::vector<std::uint32_t>& first_vertex = scratch.first_vertex;
+    first_vertex.assign(interior_base, no_id);
+    std::vector<std::uint32_t>& next_vertex = scratch.next_vertex;
+    next_vertex.clear();
     next_vertex.reserve(boundary_points);
-    std::vector<std::uint32_t> dense_position(interior_base, no_id);
+    std::vector<std::uint32_t>& dense_position = scratch.dense_position;
+    dense_position.assign(interior_base, no_id);
     std::uint32_t positions_used = 0;
     const double cos_crease = std::cos(options_.crease_angle);
     const bool with_uv = options_.uv != UvMode::none;
@@ -593,7 +652,7 @@ class Tessellator {
     double tolerance = 0.0;
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
-      PatchOutput& out = outputs_[p];
+      PatchOutput& out = (*outputs_)[p];
       error_bound = std::max(error_bound, out.bound);
       tolerance = std::max(tolerance, plans_[p].tolerance);
       unused_interior = unused_interior || out.unused_interior;
@@ -602,7 +661,7 @@ class Tessellator {
         const std::uint32_t id = out.welded[k];
         const Vec2 uv = uv_of(p, out.pattern.points[k].uv);
         for (std::uint32_t v = first_vertex[id]; v != no_id; v = next_vertex[v]) {
-          const PatchOutput& other = outputs_[sources[v].patch];
+          const PatchOutput& other = (*outputs_)[sources[v].patch];
           const std::uint32_t j = sources[v].point;
           const bool same =
               other.normals[j].dot(out.normals[k]) >= cos_crease &&
@@ -629,7 +688,7 @@ class Tessellator {
     std::size_t triangles = 0;
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
-      PatchOutput& out = outputs_[p];
+      PatchOutput& out = (*outputs_)[p];
       out.first_vertex = static_cast<std::uint32_t>(vertices);
       out.first_triangle = triangles;
       vertices += out.interior_points();
@@ -659,18 +718,18 @@ class Tessellator {
     resize(mesh.indices, 3 * triangles);
     resize(result.triangle_patches, triangles);
     for (std::size_t v = 0; v < sources.size(); ++v) {
-      const Source& source = sources[v];
-      const PatchOutput& out = outputs_[source.patch];
-      mesh.positions[v] = welded_positions_[out.welded[source.point]];
+      const VertexSource& source = sources[v];
+      const PatchOutput& out = (*outputs_)[source.patch];
+      mesh.positions[v] = (*welded_positions_)[out.welded[source.point]];
       mesh.normals[v] = out.normals[source.point];
       if (with_uv) mesh.uvs[v] = uv_of(source.patch, out.pattern.points[source.point].uv);
       if (options_.tangents) mesh.tangents[v] = out.tangents[source.point];
       mesh.position_ids[v] = source.position_id;
     }
-    for (PatchOutput& out : outputs_) {
-      out.positions = {};
-      out.normals = {};
-      out.tangents = {};
+    for (PatchOutput& out : *outputs_) {
+      out.positions.clear();
+      out.normals.clear();
+      out.tangents.clear();
     }
     // (3) Interiors and triangles, in parallel. Interior positions get ids after the boundary's,
     // in welded order.
@@ -685,7 +744,7 @@ class Tessellator {
   // Patch p's interior vertices and all its triangles, into their blocks of `mesh`.
   void write_patch(std::uint32_t p, RenderMesh& mesh, std::vector<std::uint32_t>& triangle_patches,
                    std::uint32_t position_offset) const {
-    const PatchOutput& out = outputs_[p];
+    const PatchOutput& out = (*outputs_)[p];
     const std::size_t interior = out.interior_points();
     if (interior > 0) {
       const std::size_t first = out.first_vertex;
@@ -751,10 +810,10 @@ class Tessellator {
     std::vector<double> errors(tessellated.size(), 0.0);
     parallel_for(tessellated.size(), options_.threads, [&](std::size_t q) {
       const std::uint32_t p = tessellated[q];
-      const PatchOutput& out = outputs_[p];
+      const PatchOutput& out = (*outputs_)[p];
       const std::uint32_t boundary = out.boundary_points();
       const auto position = [&](std::uint32_t k) -> const Vec3& {
-        return k < boundary ? welded_positions_[out.welded[k]] : mesh.positions[out.first_vertex + (k - boundary)];
+        return k < boundary ? (*welded_positions_)[out.welded[k]] : mesh.positions[out.first_vertex + (k - boundary)];
       };
       double error = 0.0;
       const auto sample = [&](const Triangle& t) {
@@ -865,8 +924,8 @@ class Tessellator {
   std::vector<bool> corner_owner_;
   std::vector<std::uint32_t> interior_first_;
   std::uint32_t welded_count_ = 0;
-  std::vector<PatchOutput> outputs_;
-  std::vector<Vec3> welded_positions_;  // of the boundary points, by welded id
+  std::vector<PatchOutput>* outputs_ = nullptr;  // in the result's scratch
+  std::vector<Vec3>* welded_positions_ = nullptr;  // of the boundary points, by welded id (in the scratch)
   bool unused_interior_ = false;
   std::size_t culled_ = 0;
   std::int64_t culled_triangles_ = 0;
@@ -877,6 +936,7 @@ class Tessellator {
 Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& options) {
   Tessellation result;
   Tessellator(pieces, options).run(result);
+  result.scratch.release();
   return result;
 }
 
@@ -1029,6 +1089,7 @@ SurfacePieces split_surface_pieces(const PatchSet& set, int k, bool tight_diagon
 Tessellation tessellate(const PatchSet& set, const TessellationOptions& options) {
   Tessellation result;
   tessellate(set, options, result);
+  result.scratch.release();
   return result;
 }
 

@@ -36,6 +36,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -83,6 +84,30 @@ struct TessellationOptions {
   bool split_patches = true;
 };
 
+namespace detail {
+struct TessellatorScratch;
+
+/// Owns the tessellator's scratch memory (per-patch patterns and attributes) between runs of
+/// tessellate(set, options, result). Scratch is not part of a value: a copy starts empty, and
+/// moves move it.
+class TessellatorScratchHandle {
+ public:
+  TessellatorScratchHandle() noexcept;
+  ~TessellatorScratchHandle();
+  TessellatorScratchHandle(const TessellatorScratchHandle&) noexcept;
+  TessellatorScratchHandle& operator=(const TessellatorScratchHandle&) noexcept;
+  TessellatorScratchHandle(TessellatorScratchHandle&&) noexcept;
+  TessellatorScratchHandle& operator=(TessellatorScratchHandle&&) noexcept;
+  /// The scratch, made on first use.
+  TessellatorScratch& get();
+  /// Frees the scratch.
+  void release() noexcept;
+
+ private:
+  std::unique_ptr<TessellatorScratch> scratch_;
+};
+}  // namespace detail
+
 struct Tessellation {
   RenderMesh mesh;
   /// The patch each triangle belongs to.
@@ -99,6 +124,8 @@ struct Tessellation {
   std::int64_t culled_triangles = 0;
   /// Welded points (distinct position ids).
   std::size_t welded_vertices = 0;
+  /// Kept by tessellate(set, options, result) for the next run (empty after the other forms).
+  detail::TessellatorScratchHandle scratch;
 };
 
 /// Two piece edges that are one edge of the surface.

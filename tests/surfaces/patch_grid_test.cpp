@@ -66,5 +66,53 @@ TEST(PatchGrid, RejectsMismatchedDegrees) {
   EXPECT_THROW(PatchGridWeights::uniform(1, 1, 0, 2), InvalidInput);
 }
 
+// The row kernel of degrees 1-3 runs with AVX2 where the processor has it; it must give the
+// portable kernel's bits (no fused multiply-adds, the same sums in the same order). On a machine
+// without AVX2 both are the portable kernel.
+RC_GTEST_PROP(PatchGrid, EveryInstructionSetGivesTheSameBits, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 3);
+  const auto count_u = static_cast<std::size_t>(*rc::gen::inRange(1, 40));
+  const auto count_v = static_cast<std::size_t>(*rc::gen::inRange(1, 4));
+  std::vector<double> us(count_u);
+  std::vector<double> vs(count_v);
+  for (double& u : us) u = *rc::gen::inRange(0, 1001) / 1000.0;
+  for (double& v : vs) v = *rc::gen::inRange(0, 1001) / 1000.0;
+  const PatchGridWeights weights(patch.degree_u(), patch.degree_v(), us, vs);
+  std::vector<Vec3> points(count_u * count_v), normals(points.size());
+  std::vector<Vec3> portable_points(points.size()), portable_normals(points.size());
+  try {
+    evaluate_grid(patch, weights, {points, normals, {}});
+  } catch (const NumericalError&) {
+    // No normal somewhere (a point or a curve): the portable kernel says so too.
+    RC_ASSERT_THROWS_AS(detail::evaluate_grid_portable(patch, weights, {portable_points, portable_normals, {}}),
+                        NumericalError);
+    return;
+  }
+  detail::evaluate_grid_portable(patch, weights, {portable_points, portable_normals, {}});
+  RC_ASSERT(points == portable_points);
+  RC_ASSERT(normals == portable_normals);
+}
+
+TEST(PatchGrid, WritesIntoCallerStorageOrRefusesTooLittle) {
+  // A biquadratic bump over the unit square: x = u, y = v, z = 4 u (1 - u) v (1 - v).
+  std::vector<Vec3> net;
+  for (int j = 0; j <= 2; ++j) {
+    for (int i = 0; i <= 2; ++i) net.emplace_back(0.5 * i, 0.5 * j, i == 1 && j == 1 ? 1.0 : 0.0);
+  }
+  const BezierPatch3 patch(2, 2, std::move(net));
+  const PatchGridWeights weights = PatchGridWeights::uniform(2, 2, 5, 3);
+  const PatchGridSamples samples = evaluate_grid(patch, weights, true);
+  std::vector<Vec3> points(24), normals(24);
+  std::vector<Vec4> tangents(24);
+  evaluate_grid(patch, weights, {points, normals, tangents});
+  EXPECT_EQ(points, samples.points);
+  EXPECT_EQ(normals, samples.normals);
+  EXPECT_EQ(tangents, samples.tangents);
+  std::vector<Vec3> short_normals(23);
+  EXPECT_THROW(evaluate_grid(patch, weights, {points, short_normals, {}}), InvalidInput);
+  std::vector<Vec4> short_tangents(1);
+  EXPECT_THROW(evaluate_grid(patch, weights, {points, normals, short_tangents}), InvalidInput);
+}
+
 }  // namespace
 }  // namespace patchwork

@@ -4,6 +4,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <map>
+#include <set>
 #include <utility>
 
 #include "core/errors.h"
@@ -63,6 +64,36 @@ RC_GTEST_PROP(TessellationPattern, IsATriangulationOfTheSquareWithoutTJunctions,
     RC_ASSERT(p.uv == expected);
   }
   if (pattern.grid) RC_ASSERT(pattern.triangles.size() == 2u * rates.inner_u * rates.inner_v);
+}
+
+// The boundary part is make_pattern's boundary points and exactly those of its triangles with a
+// boundary corner; the rest are the inner cells that for_each_inner_triangle lists.
+RC_GTEST_PROP(TessellationPattern, BoundaryPartAndInnerCellsMakeTheWholePattern, ()) {
+  const PatternRates rates{*rc::gen::inRange(1, 10), *rc::gen::inRange(1, 10),
+                           {*rc::gen::inRange(1, 12), *rc::gen::inRange(1, 12), *rc::gen::inRange(1, 12),
+                            *rc::gen::inRange(1, 12)}};
+  const TessellationPattern whole = make_pattern(rates);
+  TessellationPattern boundary = make_pattern({2, 2, {1, 2, 3, 4}});  // storage to be reused
+  make_pattern_boundary(rates, boundary);
+  RC_ASSERT(boundary.grid == whole.grid);
+  const auto first_interior = static_cast<std::uint32_t>(boundary.points.size());
+  RC_ASSERT(first_interior <= whole.points.size());
+  for (std::uint32_t k = 0; k < first_interior; ++k) {
+    RC_ASSERT(whole.points[k].kind != PatternPoint::Kind::interior);
+    RC_ASSERT(boundary.points[k].uv == whole.points[k].uv);
+    RC_ASSERT(boundary.points[k].step == whole.points[k].step);
+  }
+  using Triangle = std::array<std::uint32_t, 3>;
+  std::multiset<Triangle> expected_boundary;
+  std::multiset<Triangle> expected_inner;
+  for (const Triangle& t : whole.triangles) {
+    const bool touches = t[0] < first_interior || t[1] < first_interior || t[2] < first_interior;
+    (touches ? expected_boundary : expected_inner).insert(t);
+  }
+  RC_ASSERT(std::multiset<Triangle>(boundary.triangles.begin(), boundary.triangles.end()) == expected_boundary);
+  std::multiset<Triangle> inner;
+  for_each_inner_triangle(inner_grid(rates), first_interior, [&](const Triangle& t) { inner.insert(t); });
+  RC_ASSERT(inner == expected_inner);
 }
 
 TEST(TessellationPattern, EqualRatesGiveThePlainGrid) {

@@ -170,6 +170,54 @@ TEST(Tessellator, OutputDoesNotDependOnTheThreadCount) {
   EXPECT_EQ(one.measured_error, two.measured_error);
 }
 
+void expect_same_tessellation(const Tessellation& a, const Tessellation& b) {
+  EXPECT_EQ(a.mesh.indices, b.mesh.indices);
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.mesh.normals, b.mesh.normals);
+  EXPECT_EQ(a.mesh.uvs, b.mesh.uvs);
+  EXPECT_EQ(a.mesh.tangents, b.mesh.tangents);
+  EXPECT_EQ(a.mesh.position_ids, b.mesh.position_ids);
+  EXPECT_EQ(a.triangle_patches, b.triangle_patches);
+  EXPECT_EQ(a.tolerance, b.tolerance);
+  EXPECT_EQ(a.error_bound, b.error_bound);
+  EXPECT_EQ(a.measured_error, b.measured_error);
+  EXPECT_EQ(a.culled_patches, b.culled_patches);
+  EXPECT_EQ(a.culled_triangles, b.culled_triangles);
+  EXPECT_EQ(a.welded_vertices, b.welded_vertices);
+}
+
+// One Tessellation reused through runs that differ in size, mode, attributes and culling (the
+// arrays and the scratch keep storage from run to run) gives each run's fresh result exactly.
+TEST(Tessellator, ReusedOutputGivesTheFreshResult) {
+  TessellationOptions uniform;
+  uniform.segments = 24;
+  uniform.optimize = false;
+  TessellationOptions fine = relative(1e-3);
+  fine.tangents = true;
+  fine.uv = UvMode::atlas;
+  TessellationOptions culled;
+  culled.camera = Camera{Vec3(8, -6, 5), Vec3(0, 0, 1.5), Vec3::UnitZ(), 40.0, 640, 480};
+  culled.pixel_tolerance = 2.0;
+  TessellationOptions coarse = relative(1e-1);
+  coarse.uv = UvMode::none;
+  Tessellation reused;
+  for (const TessellationOptions* options : {&uniform, &fine, &culled, &coarse, &uniform}) {
+    tessellate(teapot(), *options, reused);
+    expect_same_tessellation(reused, tessellate(teapot(), *options));
+  }
+  // The camera run culled patches whose scratch held an earlier run's data.
+  tessellate(teapot(), culled, reused);
+  EXPECT_GT(reused.culled_patches, 0u);
+  validate(reused.mesh);
+  // A copy is the same value without the scratch; bad options leave the result as it was.
+  const Tessellation copy = reused;
+  expect_same_tessellation(copy, reused);
+  TessellationOptions bad;
+  bad.segments = 0;
+  EXPECT_THROW(tessellate(teapot(), bad, reused), InvalidInput);
+  expect_same_tessellation(copy, reused);
+}
+
 TEST(Tessellator, TangentsAreUnitOrthogonalAndRightHanded) {
   TessellationOptions options = relative(1e-2);
   options.tangents = true;
