@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -124,12 +125,52 @@ struct VertexSource {
   std::uint32_t position_id;
 };
 
+// Heads of the vertex chains by (welded id, UV): an open-addressing table (linear probing) sized
+// for the boundary points of a run.
+class ChainHeads {
+ public:
+  // Empties the table, with room for `keys` keys.
+  void reset(std::size_t keys) {
+    std::size_t capacity = 16;
+    while (capacity < 2 * keys) capacity *= 2;
+    slots_.assign(capacity, Slot{});
+  }
+  // The head for (id, uv), no_id if new.
+  std::uint32_t& head(std::uint32_t id, const Vec2& uv) {
+    // + 0.0: -0 and +0 are one key.
+    const auto x = std::bit_cast<std::uint64_t>(uv.x() + 0.0);
+    const auto y = std::bit_cast<std::uint64_t>(uv.y() + 0.0);
+    std::uint64_t h = (id + 1) * 0x9E3779B97F4A7C15ull;
+    h = (h ^ x) * 0xC2B2AE3D27D4EB4Full;
+    h = (h ^ (h >> 29) ^ y) * 0x165667B19E3779F9ull;
+    h ^= h >> 32;
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t s = h & mask;; s = (s + 1) & mask) {
+      Slot& slot = slots_[s];
+      if (slot.id == no_id) {
+        slot.id = id;
+        slot.uv = uv;
+        return slot.head;
+      }
+      if (slot.id == id && slot.uv == uv) return slot.head;
+    }
+  }
+
+ private:
+  struct Slot {
+    std::uint32_t id = no_id;
+    std::uint32_t head = no_id;
+    Vec2 uv = Vec2::Zero();
+  };
+  std::vector<Slot> slots_;
+};
+
 // What a run needs besides its output, kept for the next run into the same Tessellation.
 struct TessellatorScratch {
   std::vector<PatchOutput> outputs;
   std::vector<Vec3> welded_positions;
   std::vector<VertexSource> sources;
-  std::vector<std::uint32_t> first_vertex;
+  ChainHeads heads;
   std::vector<std::uint32_t> next_vertex;
   std::vector<std::uint32_t> dense_position;
 };
@@ -628,17 +669,18 @@ class Tessellator {
         if (out.owner[k]) (*welded_positions_)[out.welded[k]] = out.positions[k];
       }
     }
-    // (1) Boundary vertices, chained per welded point: first_vertex[id] -> next_vertex[...] -> ...
-    // A vertex is known by the boundary point it was made from; its attributes are copied once
-    // the mesh has its size.
+    // (1) Boundary vertices, chained per welded point and UV (a vertex can only serve points with
+    // its UV; at a pole hundreds of points share one welded id): heads[(id, uv)] -> next_vertex[...]
+    // -> ... A vertex is known by the boundary point it was made from; its attributes are copied
+    // once the mesh has its size.
     detail::TessellatorScratch& scratch = result.scratch.get();
     std::vector<VertexSource>& sources = scratch.sources;
     std::size_t boundary_points = 0;
     for (const PatchOutput& out : *outputs_) boundary_points += out.boundary_points();
     sources.clear();
     sources.reserve(boundary_points);
-    std::vector<std::uint32_t>& first_vertex = scratch.first_vertex;
-    first_vertex.assign(interior_base, no_id);
+    detail::ChainHeads& heads = scratch.heads;
+    heads.reset(boundary_points);
     std::vector<std::uint32_t>& next_vertex = scratch.next_vertex;
     next_vertex.clear();
     next_vertex.reserve(boundary_points);
@@ -659,13 +701,12 @@ class Tessellator {
       out.vertex.assign(out.boundary_points(), no_id);
       const auto vertex = [&](std::uint32_t k) {
         const std::uint32_t id = out.welded[k];
-        const Vec2 uv = uv_of(p, out.pattern.points[k].uv);
-        for (std::uint32_t v = first_vertex[id]; v != no_id; v = next_vertex[v]) {
+        std::uint32_t& head = heads.head(id, with_uv ? uv_of(p, out.pattern.points[k].uv) : Vec2::Zero());
+        for (std::uint32_t v = head; v != no_id; v = next_vertex[v]) {
           const PatchOutput& other = (*outputs_)[sources[v].patch];
           const std::uint32_t j = sources[v].point;
           const bool same =
               other.normals[j].dot(out.normals[k]) >= cos_crease &&
-              (!with_uv || uv_of(sources[v].patch, other.pattern.points[j].uv) == uv) &&
               (!options_.tangents || (other.tangents[j].w() == out.tangents[k].w() &&
                                       other.tangents[j].head<3>().dot(out.tangents[k].head<3>()) >= cos_crease));
           if (same) return v;
@@ -673,8 +714,8 @@ class Tessellator {
         const auto v = static_cast<std::uint32_t>(sources.size());
         if (dense_position[id] == no_id) dense_position[id] = positions_used++;
         sources.push_back({p, k, dense_position[id]});
-        next_vertex.push_back(first_vertex[id]);
-        first_vertex[id] = v;
+        next_vertex.push_back(head);
+        head = v;
         return v;
       };
       for (const Triangle& t : out.kept) {
