@@ -75,7 +75,8 @@ struct RowScratch {
 template <int N>
 [[gnu::always_inline]] inline bool grid_row_body(std::size_t count, const double* __restrict bu,
                                                  const double* __restrict dbu, const Vec3* __restrict Q,
-                                                 const Vec3* __restrict dQ, double threshold, double* __restrict px,
+                                                 const Vec3* __restrict dQ, double threshold, double sign,
+                                                 double* __restrict px,
                                                  double* __restrict py, double* __restrict pz, double* __restrict nx,
                                                  double* __restrict ny, double* __restrict nz,
                                                  double* __restrict regular, double* __restrict points,
@@ -105,7 +106,7 @@ template <int N>
     const double norm = std::sqrt(cx * cx + cy * cy + cz * cz);
     // No branch around the division (std::max is one), so the loop vectorises; the tiny
     // summand only keeps it finite at norm 0, and degenerate points are redone by the caller.
-    const double inverse = 1.0 / (norm + 1e-300);
+    const double inverse = sign / (norm + 1e-300);
     nx[a] = cx * inverse;
     ny[a] = cy * inverse;
     nz[a] = cz * inverse;
@@ -119,8 +120,8 @@ template <int N>
 
 template <int N>
 bool grid_row_portable(std::size_t count, const double* bu, const double* dbu, const Vec3* Q, const Vec3* dQ,
-                       double threshold, RowScratch row, double* points, double* normals) {
-  return grid_row_body<N>(count, bu, dbu, Q, dQ, threshold, row.px, row.py, row.pz, row.nx, row.ny, row.nz,
+                       double threshold, double sign, RowScratch row, double* points, double* normals) {
+  return grid_row_body<N>(count, bu, dbu, Q, dQ, threshold, sign, row.px, row.py, row.pz, row.nx, row.ny, row.nz,
                           row.regular, points, normals);
 }
 
@@ -130,9 +131,9 @@ bool grid_row_portable(std::size_t count, const double* bu, const double* dbu, c
 #define PATCHWORK_GRID_AVX2 1
 template <int N>
 [[gnu::target("avx2")]] bool grid_row_avx2(std::size_t count, const double* bu, const double* dbu, const Vec3* Q,
-                                           const Vec3* dQ, double threshold, RowScratch row, double* points,
-                                           double* normals) {
-  return grid_row_body<N>(count, bu, dbu, Q, dQ, threshold, row.px, row.py, row.pz, row.nx, row.ny, row.nz,
+                                           const Vec3* dQ, double threshold, double sign, RowScratch row,
+                                           double* points, double* normals) {
+  return grid_row_body<N>(count, bu, dbu, Q, dQ, threshold, sign, row.px, row.py, row.pz, row.nx, row.ny, row.nz,
                           row.regular, points, normals);
 }
 
@@ -145,45 +146,95 @@ bool has_avx2() {
 }
 #endif
 
+// grid_row_body, dispatched: bu and dbu are the row direction's Bernstein values and derivatives
+// by index first, Q and dQ the net contracted in the other direction with its values and
+// derivatives; `sign` multiplies the normal (-1 when the row runs along v, whose cross product is
+// F_v x F_u).
 template <int N>
 bool grid_row(std::size_t count, const double* bu, const double* dbu, const Vec3* Q, const Vec3* dQ, double threshold,
-              RowScratch row, double* points, double* normals, bool allow_avx2) {
+              double sign, RowScratch row, double* points, double* normals, bool allow_avx2) {
 #ifdef PATCHWORK_GRID_AVX2
-  if (allow_avx2 && has_avx2()) return grid_row_avx2<N>(count, bu, dbu, Q, dQ, threshold, row, points, normals);
+  if (allow_avx2 && has_avx2()) return grid_row_avx2<N>(count, bu, dbu, Q, dQ, threshold, sign, row, points, normals);
 #endif
   static_cast<void>(allow_avx2);
-  return grid_row_portable<N>(count, bu, dbu, Q, dQ, threshold, row, points, normals);
+  return grid_row_portable<N>(count, bu, dbu, Q, dQ, threshold, sign, row, points, normals);
 }
 
-// Points and unit normals (no tangents) of a patch of u-degree N, a row at a time (grid_row).
+// A table of Bernstein rows (table(k)[i] for parameter k, index i) by index first:
+// out[i * count + k], as grid_row reads it.
+template <int N, class Rows>
+std::vector<double> by_index(std::size_t count, const Rows& table) {
+  std::vector<double> out((N + 1) * count);
+  for (std::size_t k = 0; k < count; ++k) {
+    for (int i = 0; i <= N; ++i) out[static_cast<std::size_t>(i) * count + k] = table(k)[static_cast<std::size_t>(i)];
+  }
+  return out;
+}
+
+// Structure-of-arrays scratch for rows of `count` points.
+struct RowBuffer {
+  explicit RowBuffer(std::size_t count) : storage(7 * count) {
+    double* d = storage.data();
+    row = {d, d + count, d + 2 * count, d + 3 * count, d + 4 * count, d + 5 * count, d + 6 * count};
+  }
+  std::vector<double> storage;
+  RowScratch row{};
+};
+
+// Points and unit normals (no tangents) of a patch of u-degree N, a row (fixed v) at a time.
 template <int N>
-void evaluate_grid_points_normals(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out,
-                                  double threshold, bool allow_avx2) {
+void evaluate_grid_rows(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out,
+                        double threshold, bool allow_avx2) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is three packed doubles");
   const std::size_t count_u = weights.us().size();
   const std::size_t count_v = weights.vs().size();
-  std::vector<double> bu((N + 1) * count_u);
-  std::vector<double> dbu((N + 1) * count_u);
-  for (std::size_t a = 0; a < count_u; ++a) {
-    for (int i = 0; i <= N; ++i) {
-      bu[static_cast<std::size_t>(i) * count_u + a] = weights.u_values(a)[static_cast<std::size_t>(i)];
-      dbu[static_cast<std::size_t>(i) * count_u + a] = weights.u_derivatives(a)[static_cast<std::size_t>(i)];
-    }
-  }
-  static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is three packed doubles");
-  std::vector<double> scratch(7 * count_u);
-  const RowScratch row{scratch.data(),           scratch.data() + count_u,     scratch.data() + 2 * count_u,
-                       scratch.data() + 3 * count_u, scratch.data() + 4 * count_u, scratch.data() + 5 * count_u,
-                       scratch.data() + 6 * count_u};
+  const std::vector<double> bu = by_index<N>(count_u, [&](std::size_t a) { return weights.u_values(a); });
+  const std::vector<double> dbu = by_index<N>(count_u, [&](std::size_t a) { return weights.u_derivatives(a); });
+  const RowBuffer buffer(count_u);
   for (std::size_t b = 0; b < count_v; ++b) {
     std::array<Vec3, N + 1> Q;
     std::array<Vec3, N + 1> dQ;
     contract_in_v(patch, weights, b, Q.data(), dQ.data());
-    const bool degenerate = grid_row<N>(count_u, bu.data(), dbu.data(), Q.data(), dQ.data(), threshold, row,
-                                        out.points[count_u * b].data(), out.normals[count_u * b].data(), allow_avx2);
+    const bool degenerate = grid_row<N>(count_u, bu.data(), dbu.data(), Q.data(), dQ.data(), threshold, 1.0,
+                                        buffer.row, out.points[count_u * b].data(), out.normals[count_u * b].data(),
+                                        allow_avx2);
     if (!degenerate) continue;
     for (std::size_t a = 0; a < count_u; ++a) {
-      if (row.regular[a] == 0.0) out.normals[a + count_u * b] = unit_normal(patch, weights.us()[a], weights.vs()[b]);
+      if (buffer.row.regular[a] == 0.0) out.normals[a + count_u * b] = unit_normal(patch, weights.us()[a], weights.vs()[b]);
     }
+  }
+}
+
+// The same for a single column (one u, many v: the side of a pattern), as one row along v of
+// v-degree M: the net contracted in u (R_j = sum_i B_i^n(u) P_ij, dR_j with B_i^n'), so each
+// point costs a row kernel's sums instead of a contraction of the whole net.
+template <int M>
+void evaluate_grid_column(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out,
+                          double threshold, bool allow_avx2) {
+  const std::size_t count_v = weights.vs().size();
+  const std::vector<double> bv = by_index<M>(count_v, [&](std::size_t b) { return weights.v_values(b); });
+  const std::vector<double> dbv = by_index<M>(count_v, [&](std::size_t b) { return weights.v_derivatives(b); });
+  const std::span<const double> bu = weights.u_values(0);
+  const std::span<const double> dbu = weights.u_derivatives(0);
+  std::array<Vec3, M + 1> R;
+  std::array<Vec3, M + 1> dR;
+  for (int j = 0; j <= M; ++j) {
+    Vec3 r = Vec3::Zero();
+    Vec3 dr = Vec3::Zero();
+    for (int i = 0; i <= patch.degree_u(); ++i) {
+      r += bu[i] * patch.control_point(i, j);
+      dr += dbu[i] * patch.control_point(i, j);
+    }
+    R[j] = r;
+    dR[j] = dr;
+  }
+  const RowBuffer buffer(count_v);
+  // Along v the kernel's cross product is F_v x F_u: sign -1 gives F_u x F_v.
+  const bool degenerate = grid_row<M>(count_v, bv.data(), dbv.data(), R.data(), dR.data(), threshold, -1.0, buffer.row,
+                                      out.points[0].data(), out.normals[0].data(), allow_avx2);
+  if (!degenerate) return;
+  for (std::size_t b = 0; b < count_v; ++b) {
+    if (buffer.row.regular[b] == 0.0) out.normals[b] = unit_normal(patch, weights.us()[0], weights.vs()[b]);
   }
 }
 
@@ -251,10 +302,16 @@ void evaluate_grid_with(const BezierPatch3& patch, const PatchGridWeights& weigh
   const double threshold = 1e-12 * std::max(n * m, 1) * scale * scale;
   const double derivative_threshold = 1e-12 * std::max({n, m, 1}) * scale;
   // The usual degrees (the teapot's are 3) without tangents take the vectorised path.
+  if (!with_tangents && count_u == 1 && count_v > 1 && m >= 1 && m <= 3) {
+    if (m == 1) evaluate_grid_column<1>(patch, weights, out, threshold, allow_avx2);
+    if (m == 2) evaluate_grid_column<2>(patch, weights, out, threshold, allow_avx2);
+    if (m == 3) evaluate_grid_column<3>(patch, weights, out, threshold, allow_avx2);
+    return;
+  }
   if (!with_tangents && n >= 1 && n <= 3) {
-    if (n == 1) evaluate_grid_points_normals<1>(patch, weights, out, threshold, allow_avx2);
-    if (n == 2) evaluate_grid_points_normals<2>(patch, weights, out, threshold, allow_avx2);
-    if (n == 3) evaluate_grid_points_normals<3>(patch, weights, out, threshold, allow_avx2);
+    if (n == 1) evaluate_grid_rows<1>(patch, weights, out, threshold, allow_avx2);
+    if (n == 2) evaluate_grid_rows<2>(patch, weights, out, threshold, allow_avx2);
+    if (n == 3) evaluate_grid_rows<3>(patch, weights, out, threshold, allow_avx2);
     return;
   }
   std::vector<Vec3> Q(static_cast<std::size_t>(n) + 1);

@@ -10,11 +10,8 @@
 namespace patchwork {
 namespace {
 
-RC_GTEST_PROP(PatchGrid, MatchesPointwiseEvaluation, ()) {
-  const BezierPatch3 patch = *testing::random_patch(1, 5);
-  const auto segments_u = static_cast<std::size_t>(*rc::gen::inRange(1, 9));
-  const auto segments_v = static_cast<std::size_t>(*rc::gen::inRange(1, 9));
-  const PatchGridWeights weights = PatchGridWeights::uniform(patch.degree_u(), patch.degree_v(), segments_u, segments_v);
+// evaluate_grid against pointwise evaluation on the grid of `weights`.
+void check_against_pointwise(const BezierPatch3& patch, const PatchGridWeights& weights) {
   // A patch without a normal somewhere (a point or a curve: small generated sizes make those)
   // is rejected by unit_normal and by evaluate_grid alike.
   bool degenerate = false;
@@ -32,9 +29,9 @@ RC_GTEST_PROP(PatchGrid, MatchesPointwiseEvaluation, ()) {
     return;
   }
   const PatchGridSamples samples = evaluate_grid(patch, weights);
-  RC_ASSERT(samples.points.size() == (segments_u + 1) * (segments_v + 1));
-  for (std::size_t b = 0; b <= segments_v; ++b) {
-    for (std::size_t a = 0; a <= segments_u; ++a) {
+  RC_ASSERT(samples.points.size() == weights.us().size() * weights.vs().size());
+  for (std::size_t b = 0; b < weights.vs().size(); ++b) {
+    for (std::size_t a = 0; a < weights.us().size(); ++a) {
       const double u = weights.us()[a];
       const double v = weights.vs()[b];
       const std::size_t k = a + samples.count_u * b;
@@ -47,6 +44,23 @@ RC_GTEST_PROP(PatchGrid, MatchesPointwiseEvaluation, ()) {
       }
     }
   }
+}
+
+RC_GTEST_PROP(PatchGrid, MatchesPointwiseEvaluation, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 5);
+  const auto segments_u = static_cast<std::size_t>(*rc::gen::inRange(1, 9));
+  const auto segments_v = static_cast<std::size_t>(*rc::gen::inRange(1, 9));
+  check_against_pointwise(patch,
+                          PatchGridWeights::uniform(patch.degree_u(), patch.degree_v(), segments_u, segments_v));
+}
+
+// A single column (one u, the side of a pattern) is evaluated along v; it matches too.
+RC_GTEST_PROP(PatchGrid, OneColumnMatchesPointwiseEvaluation, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 4);
+  const std::vector<double> us = {*rc::gen::inRange(0, 5) / 4.0};
+  std::vector<double> vs(static_cast<std::size_t>(*rc::gen::inRange(2, 12)));
+  for (std::size_t b = 0; b < vs.size(); ++b) vs[b] = static_cast<double>(b) / static_cast<double>(vs.size() - 1);
+  check_against_pointwise(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), us, vs));
 }
 
 TEST(PatchGrid, CollapsedEdgeGetsTheLimitNormal) {
