@@ -27,20 +27,29 @@ std::vector<double> uniform_parameters(std::size_t segments) {
   return ts;
 }
 
-// The net contracted in v at row b: Q_i = sum_j B_j^m(v_b) P_ij and dQ_i with B_j^m'.
-void contract_in_v(const BezierPatch3& patch, const PatchGridWeights& weights, std::size_t b, Vec3* Q, Vec3* dQ) {
-  const std::span<const double> bv = weights.v_values(b);
-  const std::span<const double> dbv = weights.v_derivatives(b);
-  for (int i = 0; i <= patch.degree_u(); ++i) {
+// The net contracted in one direction with weights w and their derivatives dw: in v (a row of
+// fixed v: Q_i = sum_j w_j P_ij, i = 0..n) or in u (a column: Q_j = sum_i w_i P_ij, j = 0..m);
+// dQ likewise with dw.
+void contract(const BezierPatch3& patch, std::span<const double> w, std::span<const double> dw, bool in_v, Vec3* Q,
+              Vec3* dQ) {
+  const int kept = in_v ? patch.degree_u() : patch.degree_v();
+  const int summed = in_v ? patch.degree_v() : patch.degree_u();
+  for (int k = 0; k <= kept; ++k) {
     Vec3 q = Vec3::Zero();
     Vec3 dq = Vec3::Zero();
-    for (int j = 0; j <= patch.degree_v(); ++j) {
-      q += bv[j] * patch.control_point(i, j);
-      dq += dbv[j] * patch.control_point(i, j);
+    for (int l = 0; l <= summed; ++l) {
+      const Vec3& P = in_v ? patch.control_point(k, l) : patch.control_point(l, k);
+      q += w[l] * P;
+      dq += dw[l] * P;
     }
-    Q[i] = q;
-    dQ[i] = dq;
+    Q[k] = q;
+    dQ[k] = dq;
   }
+}
+
+// The net contracted in v at row b: Q_i = sum_j B_j^m(v_b) P_ij and dQ_i with B_j^m'.
+void contract_in_v(const BezierPatch3& patch, const PatchGridWeights& weights, std::size_t b, Vec3* Q, Vec3* dQ) {
+  contract(patch, weights.v_values(b), weights.v_derivatives(b), true, Q, dQ);
 }
 
 // Vec3s from three coordinate arrays (vectorised: the Vec3s are packed doubles).
@@ -214,20 +223,9 @@ void evaluate_grid_column(const BezierPatch3& patch, const PatchGridWeights& wei
   const std::size_t count_v = weights.vs().size();
   const std::vector<double> bv = by_index<M>(count_v, [&](std::size_t b) { return weights.v_values(b); });
   const std::vector<double> dbv = by_index<M>(count_v, [&](std::size_t b) { return weights.v_derivatives(b); });
-  const std::span<const double> bu = weights.u_values(0);
-  const std::span<const double> dbu = weights.u_derivatives(0);
   std::array<Vec3, M + 1> R;
   std::array<Vec3, M + 1> dR;
-  for (int j = 0; j <= M; ++j) {
-    Vec3 r = Vec3::Zero();
-    Vec3 dr = Vec3::Zero();
-    for (int i = 0; i <= patch.degree_u(); ++i) {
-      r += bu[i] * patch.control_point(i, j);
-      dr += dbu[i] * patch.control_point(i, j);
-    }
-    R[j] = r;
-    dR[j] = dr;
-  }
+  contract(patch, weights.u_values(0), weights.u_derivatives(0), false, R.data(), dR.data());
   const RowBuffer buffer(count_v);
   // Along v the kernel's cross product is F_v x F_u: sign -1 gives F_u x F_v.
   const bool degenerate = grid_row<M>(count_v, bv.data(), dbv.data(), R.data(), dR.data(), threshold, -1.0, buffer.row,
