@@ -1,7 +1,9 @@
 // libFuzzer target: small patch sets from arbitrary bytes (1 to 3 patches of degrees 1 to 3,
 // control points on a coarse lattice so that shared, collapsed and touching edges occur) through
 // the tessellator at a tolerance or a segment count from the bytes. The mesh must be valid, its
-// measured error within its bound and the bound within the tolerance.
+// measured error within its bound and the bound within the tolerance; and one Tessellation
+// reused from input to input (its arrays and scratch keep their storage) must give each input's
+// fresh result exactly.
 
 #include "meshes/render_mesh.h"
 #include "meshes/topology.h"
@@ -45,6 +47,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const double slack = 1e-9 * std::max(1.0, set.size());
     if (options.measure) PATCHWORK_FUZZ_CHECK(result.measured_error <= result.error_bound + slack);
     if (!options.segments) PATCHWORK_FUZZ_CHECK(result.error_bound <= result.tolerance + slack);
+    static Tessellation reused;
+    tessellate(set, options, reused);
+    const RenderMesh& a = reused.mesh;
+    const RenderMesh& b = result.mesh;
+    PATCHWORK_FUZZ_CHECK(a.indices == b.indices && a.positions == b.positions && a.normals == b.normals &&
+                         a.uvs == b.uvs && a.tangents == b.tangents && a.position_ids == b.position_ids);
+    PATCHWORK_FUZZ_CHECK(reused.triangle_patches == result.triangle_patches &&
+                         reused.error_bound == result.error_bound && reused.measured_error == result.measured_error &&
+                         reused.welded_vertices == result.welded_vertices);
   });
   return 0;
 }
