@@ -72,17 +72,18 @@ void add_grid_cells(int i0, int i1, int j0, int j1, const At& at, std::vector<Tr
 }
 
 // Joins the outer points (positions s = k / a along the side, k = 0..a) to the inner points
-// (positions (t + 1) / b_count for t = 0 .. b_count - 2) by advancing, at each step, along the
-// sequence whose next point comes first. Both run counter-clockwise, the inner row inside.
+// (positions (offset + t) / inner_rate, t = 0 .. inner.size() - 1) by advancing, at each step,
+// along the sequence whose next point comes first. Both run counter-clockwise, the inner row
+// inside.
 void stitch_side(const std::vector<std::uint32_t>& outer, const std::vector<std::uint32_t>& inner, int inner_rate,
-                 std::vector<Triangle>& triangles) {
+                 int offset, std::vector<Triangle>& triangles) {
   const std::size_t a = outer.size() - 1;
   const std::size_t b = inner.size() - 1;
   std::size_t i = 0;
   std::size_t j = 0;
   while (i < a || j < b) {
     const double next_outer = ratio(static_cast<int>(i + 1), static_cast<int>(a));
-    const double next_inner = ratio(static_cast<int>(j + 2), inner_rate);
+    const double next_inner = ratio(offset + static_cast<int>(j + 1), inner_rate);
     if (j == b || (i < a && next_outer <= next_inner)) {
       triangles.push_back({outer[i], outer[i + 1], inner[j]});
       ++i;
@@ -134,50 +135,70 @@ void make_pattern_boundary(const PatternRates& rates, TessellationPattern& patte
   pattern.points.reserve(static_cast<std::size_t>(boundary));
   add_boundary_points(rates, pattern.points);
 
-  if (pattern.grid) {
-    const auto at = [&](int i, int j) -> std::uint32_t {
-      const bool left = i == 0, right = i == nu, bottom = j == 0, top = j == nv;
-      if (bottom && left) return index.corner(0);
-      if (bottom && right) return index.corner(1);
-      if (top && right) return index.corner(2);
-      if (top && left) return index.corner(3);
-      if (bottom) return index.edge(0, i);
-      if (right) return index.edge(1, j);
-      if (top) return index.edge(2, i);
-      if (left) return index.edge(3, j);
-      return index.interior(i, j);
-    };
-    // The outer ring of cells: rows 0 and nv - 1 whole, columns 0 and nu - 1 between them.
-    pattern.triangles.reserve(4 * static_cast<std::size_t>(nu + nv));
-    for (int j = 0; j < nv; ++j) {
-      if (j == 0 || j == nv - 1) {
-        add_grid_cells(0, nu, j, j + 1, at, pattern.triangles);
-      } else {
-        add_grid_cells(0, 1, j, j + 1, at, pattern.triangles);
-        if (nu > 1) add_grid_cells(nu - 1, nu, j, j + 1, at, pattern.triangles);
-      }
+  // Grid point (i, j) of the inner grid; on the boundary it is a corner or an edge point, which
+  // is right on a side whose edge rate equals the inner rate along it.
+  const auto at = [&](int i, int j) -> std::uint32_t {
+    const bool left = i == 0, right = i == nu, bottom = j == 0, top = j == nv;
+    if (bottom && left) return index.corner(0);
+    if (bottom && right) return index.corner(1);
+    if (top && right) return index.corner(2);
+    if (top && left) return index.corner(3);
+    if (bottom) return index.edge(0, i);
+    if (right) return index.edge(1, j);
+    if (top) return index.edge(2, i);
+    if (left) return index.edge(3, j);
+    return index.interior(i, j);
+  };
+  // A side keeps its ring of grid cells where its edge rate equals the inner rate along it; the
+  // other sides are stitched. The grid cells are [i0, i1) x [j0, j1); those touching the
+  // boundary are listed here (the rest are the inner cells).
+  const auto matches = [&](int side) { return rates.edges[side] == (side % 2 == 0 ? nu : nv); };
+  const int i0 = matches(3) ? 0 : 1;
+  const int i1 = matches(1) ? nu : nu - 1;
+  const int j0 = matches(0) ? 0 : 1;
+  const int j1 = matches(2) ? nv : nv - 1;
+  pattern.triangles.reserve(4 * static_cast<std::size_t>(nu + nv) + 2 * static_cast<std::size_t>(
+                                                                            rates.edges[0] + rates.edges[1] + rates.edges[2] + rates.edges[3]));
+  for (int j = j0; j < j1; ++j) {
+    if (j == 0 || j == nv - 1) {
+      add_grid_cells(i0, i1, j, j + 1, at, pattern.triangles);
+    } else {
+      if (i0 == 0) add_grid_cells(0, 1, j, j + 1, at, pattern.triangles);
+      if (i1 == nu && nu > 1) add_grid_cells(nu - 1, nu, j, j + 1, at, pattern.triangles);
     }
-    return;
   }
+  if (pattern.grid) return;
 
-  // One stitched strip per side, joining it to the inner grid's outermost points.
+  // One stitched strip per other side, joining its edge points to the grid cells' outermost
+  // points along it (which reach the corners' neighbours on the sides that keep their ring).
   for (int side = 0; side < 4; ++side) {
+    if (matches(side)) continue;
     const int e = rates.edges[side];
     std::vector<std::uint32_t> outer{index.corner(side)};
     // Counter-clockwise: v0 and u1 run with their boundary_curve, v1 and u0 against it.
     for (int k = 1; k < e; ++k) outer.push_back(index.edge(side, side < 2 ? k : e - k));
     outer.push_back(index.corner((side + 1) % 4));
     std::vector<std::uint32_t> inner_row;
-    const int along = side % 2 == 0 ? nu : nv;
-    for (int t = 1; t < along; ++t) {
-      switch (side) {
-        case 0: inner_row.push_back(index.interior(t, 1)); break;
-        case 1: inner_row.push_back(index.interior(nu - 1, t)); break;
-        case 2: inner_row.push_back(index.interior(nu - t, nv - 1)); break;
-        default: inner_row.push_back(index.interior(1, nv - t)); break;
-      }
+    int offset = 0;  // the first inner point's step along the side
+    switch (side) {
+      case 0:
+        for (int i = i0; i <= i1; ++i) inner_row.push_back(at(i, 1));
+        offset = i0;
+        break;
+      case 1:
+        for (int j = j0; j <= j1; ++j) inner_row.push_back(at(nu - 1, j));
+        offset = j0;
+        break;
+      case 2:
+        for (int i = i1; i >= i0; --i) inner_row.push_back(at(i, nv - 1));
+        offset = nu - i1;
+        break;
+      default:
+        for (int j = j1; j >= j0; --j) inner_row.push_back(at(1, j));
+        offset = nv - j1;
+        break;
     }
-    stitch_side(outer, inner_row, along, pattern.triangles);
+    stitch_side(outer, inner_row, side % 2 == 0 ? nu : nv, offset, pattern.triangles);
   }
 }
 

@@ -18,9 +18,10 @@
 //
 // When every edge rate equals the inner rate along it, the pattern is the N_u x N_v grid, each
 // cell split along its (i, j)-(i+1, j+1) diagonal. Otherwise the inner grid keeps at least two
-// segments per direction, its outer ring is dropped, and each side of the square is stitched to
-// the first inner row or column by merging the two point sequences in order: every edge keeps
-// its own rate, and no point lies inside another triangle's edge (no T-junctions).
+// segments per direction; a side whose edge rate equals the inner rate along it keeps its ring
+// of grid cells, and every other side loses its ring and is stitched to the grid's outermost
+// points along it by merging the two point sequences in order: every edge keeps its own rate,
+// and no point lies inside another triangle's edge (no T-junctions).
 // Triangles are counter-clockwise in (u, v).
 
 #include <array>

@@ -105,6 +105,29 @@ TEST(TessellationPattern, EqualRatesGiveThePlainGrid) {
   EXPECT_EQ(first_edge_point({3, 2, {3, 2, 3, 2}}, 2), 7u);
 }
 
+// Only a side whose edge rate differs from the inner rate along it is stitched; the others keep
+// their ring of grid cells. Here only u1 (rate 5 against 2 inner rows): the cells of the two
+// columns left of it are the grid's, and the strip has one triangle per segment on either side.
+TEST(TessellationPattern, OnlyMismatchedSidesAreStitched) {
+  const PatternRates rates{3, 2, {3, 5, 3, 2}};
+  const TessellationPattern pattern = make_pattern(rates);
+  EXPECT_FALSE(pattern.grid);
+  EXPECT_EQ(pattern.triangles.size(), 2u * 2 * 2 + 5 + 2);
+  int cells = 0;
+  int strip = 0;
+  for (const auto& t : pattern.triangles) {
+    const double right = std::max({pattern.points[t[0]].uv.x(), pattern.points[t[1]].uv.x(), pattern.points[t[2]].uv.x()});
+    if (right <= 2.0 / 3.0) {
+      ++cells;
+      EXPECT_DOUBLE_EQ(signed_area(pattern, t), 1.0 / 12.0);  // half a 1/3 x 1/2 cell
+    } else {
+      ++strip;
+    }
+  }
+  EXPECT_EQ(cells, 8);
+  EXPECT_EQ(strip, 7);
+}
+
 TEST(TessellationPattern, RatesBelowOneAreRejected) {
   EXPECT_THROW(make_pattern({0, 2, {1, 1, 1, 1}}), InvalidInput);
   EXPECT_THROW(make_pattern({2, 2, {1, 0, 1, 1}}), InvalidInput);
