@@ -34,6 +34,7 @@
 // Culling. With a camera, each patch gets its tolerance from its nearest depth and patches
 // outside the frustum or facing away are not tessellated (surfaces/view_culling.h).
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -107,6 +108,19 @@ class TessellatorScratchHandle {
   std::unique_ptr<TessellatorScratch> scratch_;
 };
 }  // namespace detail
+
+/// The barycentric weights at which the measured error samples every triangle: its corners,
+/// edge midpoints, centroid and three inner points (all multiples of 1/6).
+inline constexpr std::array<std::array<double, 3>, 10> measure_sample_weights = {{{1, 0, 0},
+                                                                                 {0, 1, 0},
+                                                                                 {0, 0, 1},
+                                                                                 {0.5, 0.5, 0},
+                                                                                 {0, 0.5, 0.5},
+                                                                                 {0.5, 0, 0.5},
+                                                                                 {1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                                                                 {2.0 / 3, 1.0 / 6, 1.0 / 6},
+                                                                                 {1.0 / 6, 2.0 / 3, 1.0 / 6},
+                                                                                 {1.0 / 6, 1.0 / 6, 2.0 / 3}}};
 
 struct Tessellation {
   RenderMesh mesh;

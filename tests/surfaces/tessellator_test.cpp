@@ -211,6 +211,51 @@ TEST(Tessellator, ReusedOutputGivesTheFreshResult) {
   expect_same_tessellation(copy, reused);
 }
 
+// The measured error is the largest |S - L| over ten barycentric samples of every triangle (the
+// inner cells' samples evaluated as fine grids). Recomputed here from the output alone: each
+// mesh triangle sampled at the same weights, S from its patch at the interpolated UVs (patch
+// parameters), L from the vertex positions. On the teapot's patches without a pole (no
+// triangle is dropped) the two agree to rounding.
+TEST(Tessellator, MeasuredErrorIsTheLargestSampledDistanceOfTheOutput) {
+  std::vector<bool> pole(teapot().patches().size(), false);
+  for (const EdgeRef& e : teapot().collapsed_edges()) pole[e.patch] = true;
+  std::vector<BezierPatch3> patches;
+  for (std::size_t p = 0; p < teapot().patches().size(); ++p) {
+    if (!pole[p]) patches.push_back(teapot().patches()[p]);
+  }
+  // And z = f(u) + f(v), f = 24 (u^3 / 6 - u^4 / 12) (Bernstein coefficients 0, 0, 0, 1, 2): f'' =
+  // 24 u (1 - u) is largest in the middle and 0 at the ends, so the largest distance is in the
+  // inner cells, away from every side.
+  const std::array<double, 5> f = {0, 0, 0, 1, 2};
+  std::vector<Vec3> bump;
+  for (int j = 0; j <= 4; ++j) {
+    for (int i = 0; i <= 4; ++i) bump.emplace_back(i / 4.0, j / 4.0, f[i] + f[j]);
+  }
+  TessellationOptions uniform;
+  uniform.segments = 9;
+  for (const PatchSet& set : {PatchSet(patches), PatchSet({BezierPatch3(4, 4, bump)})}) {
+  for (const TessellationOptions& options : {relative(1e-3), relative(3e-4), uniform}) {
+    const Tessellation result = tessellate(set, options);
+    const RenderMesh& mesh = result.mesh;
+    double reference = 0.0;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const BezierPatch3& patch = set.patches()[result.triangle_patches[t]];
+      for (const auto& w : measure_sample_weights) {
+        Vec2 uv = Vec2::Zero();
+        Vec3 linear = Vec3::Zero();
+        for (int c = 0; c < 3; ++c) {
+          uv += w[c] * mesh.uvs[mesh.indices[3 * t + c]];
+          linear += w[c] * mesh.positions[mesh.indices[3 * t + c]];
+        }
+        reference = std::max(reference, (patch.evaluate(uv.x(), uv.y()) - linear).norm());
+      }
+    }
+    EXPECT_GT(reference, 0.0);
+    EXPECT_NEAR(result.measured_error, reference, 1e-12 * set.size());
+  }
+  }
+}
+
 TEST(Tessellator, TangentsAreUnitOrthogonalAndRightHanded) {
   TessellationOptions options = relative(1e-2);
   options.tangents = true;
