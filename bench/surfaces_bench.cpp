@@ -26,6 +26,22 @@ void grid_with_weights(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(teapot().size() * (segments + 1) * (segments + 1)));
 }
 
+// The same grid written into storage the caller keeps (GridSamplesView, as the tessellator
+// does): the kernel without the allocation and page faults of fresh sample arrays.
+void grid_into_storage(benchmark::State& state) {
+  const auto segments = static_cast<std::size_t>(state.range(0));
+  const patchwork::PatchGridWeights weights = patchwork::PatchGridWeights::uniform(3, 3, segments, segments);
+  std::vector<patchwork::Vec3> points((segments + 1) * (segments + 1));
+  std::vector<patchwork::Vec3> normals(points.size());
+  for (auto _ : state) {
+    for (const auto& patch : teapot()) {
+      patchwork::evaluate_grid(patch, weights, {points, normals, {}});
+      benchmark::DoNotOptimize(points.data());
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(teapot().size() * (segments + 1) * (segments + 1)));
+}
+
 void grid_with_de_casteljau(benchmark::State& state) {
   const auto segments = static_cast<int>(state.range(0));
   std::vector<patchwork::Vec3> points((segments + 1) * (segments + 1));
@@ -48,6 +64,7 @@ void grid_with_de_casteljau(benchmark::State& state) {
 }
 
 BENCHMARK(grid_with_weights)->Arg(8)->Arg(32)->Arg(128);
+BENCHMARK(grid_into_storage)->Arg(8)->Arg(32)->Arg(128);
 BENCHMARK(grid_with_de_casteljau)->Arg(8)->Arg(32)->Arg(128);
 
 }  // namespace
