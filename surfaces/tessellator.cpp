@@ -170,6 +170,8 @@ struct TessellatorScratch {
   std::vector<PatchOutput> outputs;
   std::vector<Vec3> welded_positions;
   std::vector<VertexSource> sources;
+  std::vector<std::uint8_t> pole;  // by welded id: a collapsed edge's point
+  std::vector<std::uint32_t> first_vertex;
   ChainHeads heads;
   std::vector<std::uint32_t> next_vertex;
   std::vector<std::uint32_t> dense_position;
@@ -669,18 +671,29 @@ class Tessellator {
         if (out.owner[k]) (*welded_positions_)[out.welded[k]] = out.positions[k];
       }
     }
-    // (1) Boundary vertices, chained per welded point and UV (a vertex can only serve points with
-    // its UV; at a pole hundreds of points share one welded id): heads[(id, uv)] -> next_vertex[...]
-    // -> ... A vertex is known by the boundary point it was made from; its attributes are copied
-    // once the mesh has its size.
+    // (1) Boundary vertices, chained per welded point: first_vertex[id] -> next_vertex[...] -> ...
+    // At a pole hundreds of points share one welded id, and a vertex can only serve points with
+    // its UV, so there the chains are per (id, UV), their heads in a hash table. A vertex is known
+    // by the boundary point it was made from; its attributes are copied once the mesh has its size.
     detail::TessellatorScratch& scratch = result.scratch.get();
     std::vector<VertexSource>& sources = scratch.sources;
     std::size_t boundary_points = 0;
     for (const PatchOutput& out : *outputs_) boundary_points += out.boundary_points();
     sources.clear();
     sources.reserve(boundary_points);
+    std::vector<std::uint8_t>& pole = scratch.pole;
+    pole.assign(interior_base, 0);
+    for (const EdgeRef& e : pieces_.collapsed) {
+      if (!plans_[e.patch].culled) pole[corner_ids_[4 * e.patch + edge_start[static_cast<int>(e.edge)]]] = 1;
+    }
+    std::size_t pole_points = 0;
+    for (const PatchOutput& out : *outputs_) {
+      for (const std::uint32_t id : out.welded) pole_points += pole[id];
+    }
     detail::ChainHeads& heads = scratch.heads;
-    heads.reset(boundary_points);
+    heads.reset(pole_points);
+    std::vector<std::uint32_t>& first_vertex = scratch.first_vertex;
+    first_vertex.assign(interior_base, no_id);
     std::vector<std::uint32_t>& next_vertex = scratch.next_vertex;
     next_vertex.clear();
     next_vertex.reserve(boundary_points);
@@ -701,12 +714,14 @@ class Tessellator {
       out.vertex.assign(out.boundary_points(), no_id);
       const auto vertex = [&](std::uint32_t k) {
         const std::uint32_t id = out.welded[k];
-        std::uint32_t& head = heads.head(id, with_uv ? uv_of(p, out.pattern.points[k].uv) : Vec2::Zero());
+        const Vec2 uv = with_uv ? uv_of(p, out.pattern.points[k].uv) : Vec2::Zero();
+        std::uint32_t& head = pole[id] != 0 ? heads.head(id, uv) : first_vertex[id];
         for (std::uint32_t v = head; v != no_id; v = next_vertex[v]) {
           const PatchOutput& other = (*outputs_)[sources[v].patch];
           const std::uint32_t j = sources[v].point;
           const bool same =
               other.normals[j].dot(out.normals[k]) >= cos_crease &&
+              (!with_uv || uv_of(sources[v].patch, other.pattern.points[j].uv) == uv) &&
               (!options_.tangents || (other.tangents[j].w() == out.tangents[k].w() &&
                                       other.tangents[j].head<3>().dot(out.tangents[k].head<3>()) >= cos_crease));
           if (same) return v;
