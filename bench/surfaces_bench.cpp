@@ -23,7 +23,8 @@ void grid_with_weights(benchmark::State& state) {
   for (auto _ : state) {
     for (const auto& patch : teapot()) benchmark::DoNotOptimize(patchwork::evaluate_grid(patch, weights));
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(teapot().size() * (segments + 1) * (segments + 1)));
+  state.SetItemsProcessed(state.iterations() *
+                          static_cast<std::int64_t>(teapot().size() * (segments + 1) * (segments + 1)));
 }
 
 // The same grid written into storage the caller keeps (GridSamplesView, as the tessellator
@@ -39,7 +40,8 @@ void grid_into_storage(benchmark::State& state) {
       benchmark::DoNotOptimize(points.data());
     }
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(teapot().size() * (segments + 1) * (segments + 1)));
+  state.SetItemsProcessed(state.iterations() *
+                          static_cast<std::int64_t>(teapot().size() * (segments + 1) * (segments + 1)));
 }
 
 void grid_with_de_casteljau(benchmark::State& state) {

@@ -111,8 +111,8 @@ void print_table() {
     TessellationOptions options;
     options.segments = n;
     const Tessellation result = tessellate(teapot(), options);
-    std::printf("uniform %-14d %10zu %12s %12.4g %12.4g %14s\n", n, result.mesh.triangle_count(), "-", result.error_bound,
-                result.measured_error, "-");
+    std::printf("uniform %-14d %10zu %12s %12.4g %12.4g %14s\n", n, result.mesh.triangle_count(), "-",
+                result.error_bound, result.measured_error, "-");
   }
   std::printf("(reference: smallest per-patch grids whose sampled error meets the tolerance, no welding)\n\n");
 }

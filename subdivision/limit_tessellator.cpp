@@ -82,8 +82,8 @@ LimitPieces limit_pieces(const LimitSurface& surface) {
   pieces.bounds.resize(pieces.count);
   for (std::uint32_t p = 0; p < pieces.count; ++p) {
     constexpr double unknown = std::numeric_limits<double>::infinity();
-    pieces.bounds[p] = triangles ? SecondDerivativeBounds{unknown, unknown, unknown}
-                                 : surface.face_bounds(result.piece_faces[p]);
+    pieces.bounds[p] =
+        triangles ? SecondDerivativeBounds{unknown, unknown, unknown} : surface.face_bounds(result.piece_faces[p]);
   }
   Eigen::AlignedBox3d box;
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) box.extend(mesh.position(v));

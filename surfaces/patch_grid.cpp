@@ -53,9 +53,8 @@ void contract_in_v(const BezierPatch3& patch, const PatchGridWeights& weights, s
 }
 
 // Vec3s from three coordinate arrays (vectorised: the Vec3s are packed doubles).
-[[gnu::always_inline]] inline void interleave(std::size_t count, const double* __restrict x,
-                                              const double* __restrict y, const double* __restrict z,
-                                              double* __restrict xyz) {
+[[gnu::always_inline]] inline void interleave(std::size_t count, const double* __restrict x, const double* __restrict y,
+                                              const double* __restrict z, double* __restrict xyz) {
   for (std::size_t a = 0; a < count; ++a) {
     xyz[3 * a] = x[a];
     xyz[3 * a + 1] = y[a];
@@ -85,9 +84,8 @@ template <int N>
 [[gnu::always_inline]] inline bool grid_row_body(std::size_t count, const double* __restrict bu,
                                                  const double* __restrict dbu, const Vec3* __restrict Q,
                                                  const Vec3* __restrict dQ, double threshold, double sign,
-                                                 double* __restrict px,
-                                                 double* __restrict py, double* __restrict pz, double* __restrict nx,
-                                                 double* __restrict ny, double* __restrict nz,
+                                                 double* __restrict px, double* __restrict py, double* __restrict pz,
+                                                 double* __restrict nx, double* __restrict ny, double* __restrict nz,
                                                  double* __restrict regular, double* __restrict points,
                                                  double* __restrict normals) {
   double degenerate = 0.0;
@@ -204,12 +202,12 @@ void evaluate_grid_rows(const BezierPatch3& patch, const PatchGridWeights& weigh
     std::array<Vec3, N + 1> Q;
     std::array<Vec3, N + 1> dQ;
     contract_in_v(patch, weights, b, Q.data(), dQ.data());
-    const bool degenerate = grid_row<N>(count_u, bu.data(), dbu.data(), Q.data(), dQ.data(), threshold, 1.0,
-                                        buffer.row, out.points[count_u * b].data(), out.normals[count_u * b].data(),
-                                        allow_avx2);
+    const bool degenerate = grid_row<N>(count_u, bu.data(), dbu.data(), Q.data(), dQ.data(), threshold, 1.0, buffer.row,
+                                        out.points[count_u * b].data(), out.normals[count_u * b].data(), allow_avx2);
     if (!degenerate) continue;
     for (std::size_t a = 0; a < count_u; ++a) {
-      if (buffer.row.regular[a] == 0.0) out.normals[a + count_u * b] = unit_normal(patch, weights.us()[a], weights.vs()[b]);
+      if (buffer.row.regular[a] == 0.0)
+        out.normals[a + count_u * b] = unit_normal(patch, weights.us()[a], weights.vs()[b]);
     }
   }
 }
@@ -282,8 +280,8 @@ void evaluate_grid_with(const BezierPatch3& patch, const PatchGridWeights& weigh
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   if (weights.degree_u() != n || weights.degree_v() != m) {
-    throw InvalidInput(detail::message("evaluate_grid: weights of degrees (", weights.degree_u(), ", ", weights.degree_v(),
-                                       ") for a patch of degrees (", n, ", ", m, ")"));
+    throw InvalidInput(detail::message("evaluate_grid: weights of degrees (", weights.degree_u(), ", ",
+                                       weights.degree_v(), ") for a patch of degrees (", n, ", ", m, ")"));
   }
   const std::size_t count_u = weights.us().size();
   const std::size_t count_v = weights.vs().size();

@@ -40,7 +40,8 @@ double ratio(int k, int n) { return static_cast<double>(k) / static_cast<double>
 
 void add_boundary_points(const PatternRates& rates, std::vector<PatternPoint>& points) {
   const std::array<Vec2, 4> corners = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
-  for (int c = 0; c < 4; ++c) points.push_back({corners[c], PatternPoint::Kind::corner, static_cast<std::uint8_t>(c), 0});
+  for (int c = 0; c < 4; ++c)
+    points.push_back({corners[c], PatternPoint::Kind::corner, static_cast<std::uint8_t>(c), 0});
   for (int k = 0; k < 4; ++k) {
     const int e = rates.edges[k];
     for (int step = 1; step < e; ++step) {
@@ -116,8 +117,8 @@ TessellationPattern make_pattern_boundary(const PatternRates& rates) {
 void make_pattern_boundary(const PatternRates& rates, TessellationPattern& pattern) {
   if (rates.inner_u < 1 || rates.inner_v < 1 ||
       std::any_of(rates.edges.begin(), rates.edges.end(), [](int e) { return e < 1; })) {
-    throw InvalidInput(detail::message("make_pattern: rates (", rates.inner_u, ", ", rates.inner_v, "; ", rates.edges[0],
-                                       ", ", rates.edges[1], ", ", rates.edges[2], ", ", rates.edges[3],
+    throw InvalidInput(detail::message("make_pattern: rates (", rates.inner_u, ", ", rates.inner_v, "; ",
+                                       rates.edges[0], ", ", rates.edges[1], ", ", rates.edges[2], ", ", rates.edges[3],
                                        ") must all be at least 1"));
   }
   const InnerGrid inner = inner_grid(rates);
@@ -157,8 +158,9 @@ void make_pattern_boundary(const PatternRates& rates, TessellationPattern& patte
   const int i1 = matches(1) ? nu : nu - 1;
   const int j0 = matches(0) ? 0 : 1;
   const int j1 = matches(2) ? nv : nv - 1;
-  pattern.triangles.reserve(4 * static_cast<std::size_t>(nu + nv) + 2 * static_cast<std::size_t>(
-                                                                            rates.edges[0] + rates.edges[1] + rates.edges[2] + rates.edges[3]));
+  pattern.triangles.reserve(
+      4 * static_cast<std::size_t>(nu + nv) +
+      2 * static_cast<std::size_t>(rates.edges[0] + rates.edges[1] + rates.edges[2] + rates.edges[3]));
   for (int j = j0; j < j1; ++j) {
     if (j == 0 || j == nv - 1) {
       add_grid_cells(i0, i1, j, j + 1, at, pattern.triangles);
@@ -210,7 +212,7 @@ TessellationPattern make_pattern(const PatternRates& rates) {
   pattern.points.reserve(pattern.points.size() + static_cast<std::size_t>(inner.u - 1) * (inner.v - 1));
   add_interior_points(inner.u, inner.v, pattern.points);
   pattern.triangles.reserve(pattern.triangles.size() + 2 * static_cast<std::size_t>(std::max(inner.u - 2, 0)) *
-                                                          static_cast<std::size_t>(std::max(inner.v - 2, 0)));
+                                                           static_cast<std::size_t>(std::max(inner.v - 2, 0)));
   for_each_inner_triangle(inner, index.interior_offset(), [&](const Triangle& t) { pattern.triangles.push_back(t); });
   return pattern;
 }

@@ -81,7 +81,8 @@ void for_each_inner_triangle(const InnerGrid& inner, std::uint32_t first_interio
   const auto row = static_cast<std::uint32_t>(inner.u - 1);
   for (int j = 1; j + 1 < inner.v; ++j) {
     for (int i = 1; i + 1 < inner.u; ++i) {
-      const std::uint32_t a = first_interior + static_cast<std::uint32_t>(i - 1) + row * static_cast<std::uint32_t>(j - 1);
+      const std::uint32_t a =
+          first_interior + static_cast<std::uint32_t>(i - 1) + row * static_cast<std::uint32_t>(j - 1);
       f(std::array<std::uint32_t, 3>{a, a + 1, a + row + 1});
       f(std::array<std::uint32_t, 3>{a, a + row + 1, a + row});
     }

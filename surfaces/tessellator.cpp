@@ -104,7 +104,9 @@ struct PatchOutput {
     bound = 0.0;
   }
   std::uint32_t boundary_points() const { return static_cast<std::uint32_t>(pattern.points.size()); }
-  std::size_t interior_points() const { return static_cast<std::size_t>(inner.u - 1) * static_cast<std::size_t>(inner.v - 1); }
+  std::size_t interior_points() const {
+    return static_cast<std::size_t>(inner.u - 1) * static_cast<std::size_t>(inner.v - 1);
+  }
   std::size_t inner_cells() const {
     return static_cast<std::size_t>(std::max(inner.u - 2, 0)) * static_cast<std::size_t>(std::max(inner.v - 2, 0));
   }
@@ -180,7 +182,9 @@ struct TessellatorScratch {
 TessellatorScratchHandle::TessellatorScratchHandle() noexcept = default;
 TessellatorScratchHandle::~TessellatorScratchHandle() = default;
 TessellatorScratchHandle::TessellatorScratchHandle(const TessellatorScratchHandle&) noexcept {}
-TessellatorScratchHandle& TessellatorScratchHandle::operator=(const TessellatorScratchHandle&) noexcept { return *this; }
+TessellatorScratchHandle& TessellatorScratchHandle::operator=(const TessellatorScratchHandle&) noexcept {
+  return *this;
+}
 TessellatorScratchHandle::TessellatorScratchHandle(TessellatorScratchHandle&&) noexcept = default;
 TessellatorScratchHandle& TessellatorScratchHandle::operator=(TessellatorScratchHandle&&) noexcept = default;
 TessellatorScratch& TessellatorScratchHandle::get() {
@@ -420,7 +424,7 @@ class Tessellator {
         const auto meets = [&](const Candidate& c) { return c.bound <= plan.tolerance; };
         const Candidate& a = candidates[0];
         const Candidate& b = candidates[1];
-        const bool take_u = meets(a) && meets(b) ? a.nu * a.nv <= b.nu * b.nv
+        const bool take_u = meets(a) && meets(b)   ? a.nu * a.nv <= b.nu * b.nv
                             : meets(a) || meets(b) ? meets(a)
                                                    : a.bound <= b.bound;
         plan.nu = take_u ? a.nu : b.nu;
@@ -574,9 +578,10 @@ class Tessellator {
     // The bound covers the whole pattern, dropped triangles included (their parameter triangles
     // map onto a mesh edge, which must be as close to the surface).
     const PatchPlan& plan = plans_[p];
-    out.bound = pattern.grid                        ? flatness_bound(plan.bounds, 1.0 / out.inner.u, 1.0 / out.inner.v)
-                : same_rates(r, plan.checked_rates) ? plan.checked_bound
-                                                    : pattern_bound(make_pattern(r), plan.bounds, out.inner.u, out.inner.v);
+    out.bound = pattern.grid ? flatness_bound(plan.bounds, 1.0 / out.inner.u, 1.0 / out.inner.v)
+                : same_rates(r, plan.checked_rates)
+                    ? plan.checked_bound
+                    : pattern_bound(make_pattern(r), plan.bounds, out.inner.u, out.inner.v);
   }
 
   // Positions, normals (and tangents) of the boundary points, each side (with its corners) as a
@@ -817,7 +822,8 @@ class Tessellator {
                             {std::span<Vec3>(mesh.positions).subspan(first, interior),
                              std::span<Vec3>(mesh.normals).subspan(first, interior), tangents});
       const std::uint32_t position = interior_first_[p] + position_offset;
-      for (std::size_t k = 0; k < interior; ++k) mesh.position_ids[first + k] = position + static_cast<std::uint32_t>(k);
+      for (std::size_t k = 0; k < interior; ++k)
+        mesh.position_ids[first + k] = position + static_cast<std::uint32_t>(k);
       if (options_.uv != UvMode::none) {
         // uv_of is affine in (u, v).
         const Vec2 origin = uv_of(p, Vec2(0, 0));
@@ -883,10 +889,12 @@ class Tessellator {
       pieces_.evaluate_grid(p, us, vs, {points, normals, {}});
       for (int i = 1; i + 1 < nu; ++i) {
         const std::uint32_t a = boundary + static_cast<std::uint32_t>(i - 1) + row * static_cast<std::uint32_t>(j - 1);
-        const std::array<std::uint32_t, 4> corner = {a, a + 1, a + row + 1, a + row};  // (i,j) (i+1,j) (i+1,j+1) (i,j+1)
+        const std::array<std::uint32_t, 4> corner = {a, a + 1, a + row + 1,
+                                                     a + row};  // (i,j) (i+1,j) (i+1,j+1) (i,j+1)
         const std::size_t first = 6 * static_cast<std::size_t>(i - 1);
         for (const bool is_lower : {true, false}) {
-          const Triangle t = is_lower ? Triangle{corner[0], corner[1], corner[2]} : Triangle{corner[0], corner[2], corner[3]};
+          const Triangle t =
+              is_lower ? Triangle{corner[0], corner[1], corner[2]} : Triangle{corner[0], corner[2], corner[3]};
           const auto& at = is_lower ? lower : upper;
           for (std::size_t k = 0; k < samples.size(); ++k) {
             Vec3 linear = Vec3::Zero();
@@ -945,14 +953,16 @@ class Tessellator {
     std::vector<std::uint32_t> reordered;
     reserve_huge(reordered, mesh.indices.size());
     reordered.resize(mesh.indices.size());
-    meshopt_optimizeVertexCacheFifo(reordered.data(), mesh.indices.data(), mesh.indices.size(), mesh.vertex_count(), 16);
+    meshopt_optimizeVertexCacheFifo(reordered.data(), mesh.indices.data(), mesh.indices.size(), mesh.vertex_count(),
+                                    16);
     const auto smallest = [](const std::uint32_t* t) { return std::min({t[0], t[1], t[2]}); };
     std::vector<std::uint32_t> first(mesh.vertex_count() + 1, 0);  // triangles by smallest corner (CSR)
     for (std::size_t t = 0; t < triangles; ++t) ++first[smallest(&mesh.indices[3 * t]) + 1];
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) first[v + 1] += first[v];
     std::vector<std::uint32_t> by_corner(triangles);
     std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-    for (std::size_t t = 0; t < triangles; ++t) by_corner[fill[smallest(&mesh.indices[3 * t])]++] = static_cast<std::uint32_t>(t);
+    for (std::size_t t = 0; t < triangles; ++t)
+      by_corner[fill[smallest(&mesh.indices[3 * t])]++] = static_cast<std::uint32_t>(t);
     const auto same = [](const std::uint32_t* a, const std::uint32_t* b) {
       for (int r = 0; r < 3; ++r) {
         if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3]) return true;
@@ -1023,7 +1033,7 @@ class Tessellator {
   std::vector<bool> corner_owner_;
   std::vector<std::uint32_t> interior_first_;
   std::uint32_t welded_count_ = 0;
-  std::vector<PatchOutput>* outputs_ = nullptr;  // in the result's scratch
+  std::vector<PatchOutput>* outputs_ = nullptr;    // in the result's scratch
   std::vector<Vec3>* welded_positions_ = nullptr;  // of the boundary points, by welded id (in the scratch)
   bool unused_interior_ = false;
   std::size_t culled_ = 0;

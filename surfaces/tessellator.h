@@ -112,15 +112,15 @@ class TessellatorScratchHandle {
 /// The barycentric weights at which the measured error samples every triangle: its corners,
 /// edge midpoints, centroid and three inner points (all multiples of 1/6).
 inline constexpr std::array<std::array<double, 3>, 10> measure_sample_weights = {{{1, 0, 0},
-                                                                                 {0, 1, 0},
-                                                                                 {0, 0, 1},
-                                                                                 {0.5, 0.5, 0},
-                                                                                 {0, 0.5, 0.5},
-                                                                                 {0.5, 0, 0.5},
-                                                                                 {1.0 / 3, 1.0 / 3, 1.0 / 3},
-                                                                                 {2.0 / 3, 1.0 / 6, 1.0 / 6},
-                                                                                 {1.0 / 6, 2.0 / 3, 1.0 / 6},
-                                                                                 {1.0 / 6, 1.0 / 6, 2.0 / 3}}};
+                                                                                  {0, 1, 0},
+                                                                                  {0, 0, 1},
+                                                                                  {0.5, 0.5, 0},
+                                                                                  {0, 0.5, 0.5},
+                                                                                  {0.5, 0, 0.5},
+                                                                                  {1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                                                                  {2.0 / 3, 1.0 / 6, 1.0 / 6},
+                                                                                  {1.0 / 6, 2.0 / 3, 1.0 / 6},
+                                                                                  {1.0 / 6, 1.0 / 6, 2.0 / 3}}};
 
 struct Tessellation {
   RenderMesh mesh;

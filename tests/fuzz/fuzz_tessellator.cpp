@@ -20,7 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const int n = 1 + static_cast<int>(bytes.below(3));
     const int m = 1 + static_cast<int>(bytes.below(3));
     std::vector<Vec3> points;
-    for (int k = 0; k < (n + 1) * (m + 1); ++k) points.emplace_back(bytes.coordinate(), bytes.coordinate(), bytes.coordinate());
+    for (int k = 0; k < (n + 1) * (m + 1); ++k)
+      points.emplace_back(bytes.coordinate(), bytes.coordinate(), bytes.coordinate());
     patches.emplace_back(n, m, std::move(points));
   }
   TessellationOptions options;

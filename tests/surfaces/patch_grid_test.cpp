@@ -39,7 +39,8 @@ void check_against_pointwise(const BezierPatch3& patch, const PatchGridWeights& 
       RC_ASSERT((samples.points[k] - patch.evaluate(u, v)).norm() <= 1e-13 * testing::net_scale(patch));
       const Vec3 n = normal(patch, u, v);
       if (n.norm() > 1e-6) {
-        const double conditioning = derivative(patch, u, v, 1, 0).norm() * derivative(patch, u, v, 0, 1).norm() / n.norm();
+        const double conditioning =
+            derivative(patch, u, v, 1, 0).norm() * derivative(patch, u, v, 0, 1).norm() / n.norm();
         RC_ASSERT((samples.normals[k] - unit_normal(patch, u, v)).norm() <= 1e-12 * conditioning);
       }
     }
@@ -50,8 +51,7 @@ RC_GTEST_PROP(PatchGrid, MatchesPointwiseEvaluation, ()) {
   const BezierPatch3 patch = *testing::random_patch(1, 5);
   const auto segments_u = static_cast<std::size_t>(*rc::gen::inRange(1, 9));
   const auto segments_v = static_cast<std::size_t>(*rc::gen::inRange(1, 9));
-  check_against_pointwise(patch,
-                          PatchGridWeights::uniform(patch.degree_u(), patch.degree_v(), segments_u, segments_v));
+  check_against_pointwise(patch, PatchGridWeights::uniform(patch.degree_u(), patch.degree_v(), segments_u, segments_v));
 }
 
 // A single column (one u, the side of a pattern) is evaluated along v; it matches too.

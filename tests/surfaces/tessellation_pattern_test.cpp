@@ -46,9 +46,10 @@ void expect_triangulation_of_square(const TessellationPattern& pattern) {
 }
 
 RC_GTEST_PROP(TessellationPattern, IsATriangulationOfTheSquareWithoutTJunctions, ()) {
-  const PatternRates rates{*rc::gen::inRange(1, 13), *rc::gen::inRange(1, 13),
-                           {*rc::gen::inRange(1, 17), *rc::gen::inRange(1, 17), *rc::gen::inRange(1, 17),
-                            *rc::gen::inRange(1, 17)}};
+  const PatternRates rates{
+      *rc::gen::inRange(1, 13),
+      *rc::gen::inRange(1, 13),
+      {*rc::gen::inRange(1, 17), *rc::gen::inRange(1, 17), *rc::gen::inRange(1, 17), *rc::gen::inRange(1, 17)}};
   const TessellationPattern pattern = make_pattern(rates);
   expect_triangulation_of_square(pattern);
   const InnerGrid inner = inner_grid(rates);
@@ -60,7 +61,10 @@ RC_GTEST_PROP(TessellationPattern, IsATriangulationOfTheSquareWithoutTJunctions,
     const PatternPoint& p = pattern.points[k];
     RC_ASSERT(p.kind == PatternPoint::Kind::edge);
     const double t = static_cast<double>(p.step) / rates.edges[p.index];
-    const Vec2 expected = p.index == 0 ? Vec2(t, 0) : p.index == 1 ? Vec2(1, t) : p.index == 2 ? Vec2(t, 1) : Vec2(0, t);
+    const Vec2 expected = p.index == 0   ? Vec2(t, 0)
+                          : p.index == 1 ? Vec2(1, t)
+                          : p.index == 2 ? Vec2(t, 1)
+                                         : Vec2(0, t);
     RC_ASSERT(p.uv == expected);
   }
   if (pattern.grid) RC_ASSERT(pattern.triangles.size() == 2u * rates.inner_u * rates.inner_v);
@@ -69,9 +73,10 @@ RC_GTEST_PROP(TessellationPattern, IsATriangulationOfTheSquareWithoutTJunctions,
 // The boundary part is make_pattern's boundary points and exactly those of its triangles with a
 // boundary corner; the rest are the inner cells that for_each_inner_triangle lists.
 RC_GTEST_PROP(TessellationPattern, BoundaryPartAndInnerCellsMakeTheWholePattern, ()) {
-  const PatternRates rates{*rc::gen::inRange(1, 10), *rc::gen::inRange(1, 10),
-                           {*rc::gen::inRange(1, 12), *rc::gen::inRange(1, 12), *rc::gen::inRange(1, 12),
-                            *rc::gen::inRange(1, 12)}};
+  const PatternRates rates{
+      *rc::gen::inRange(1, 10),
+      *rc::gen::inRange(1, 10),
+      {*rc::gen::inRange(1, 12), *rc::gen::inRange(1, 12), *rc::gen::inRange(1, 12), *rc::gen::inRange(1, 12)}};
   const TessellationPattern whole = make_pattern(rates);
   TessellationPattern boundary = make_pattern({2, 2, {1, 2, 3, 4}});  // storage to be reused
   make_pattern_boundary(rates, boundary);
@@ -116,7 +121,8 @@ TEST(TessellationPattern, OnlyMismatchedSidesAreStitched) {
   int cells = 0;
   int strip = 0;
   for (const auto& t : pattern.triangles) {
-    const double right = std::max({pattern.points[t[0]].uv.x(), pattern.points[t[1]].uv.x(), pattern.points[t[2]].uv.x()});
+    const double right =
+        std::max({pattern.points[t[0]].uv.x(), pattern.points[t[1]].uv.x(), pattern.points[t[2]].uv.x()});
     if (right <= 2.0 / 3.0) {
       ++cells;
       EXPECT_DOUBLE_EQ(signed_area(pattern, t), 1.0 / 12.0);  // half a 1/3 x 1/2 cell

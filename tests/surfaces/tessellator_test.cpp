@@ -234,25 +234,25 @@ TEST(Tessellator, MeasuredErrorIsTheLargestSampledDistanceOfTheOutput) {
   TessellationOptions uniform;
   uniform.segments = 9;
   for (const PatchSet& set : {PatchSet(patches), PatchSet({BezierPatch3(4, 4, bump)})}) {
-  for (const TessellationOptions& options : {relative(1e-3), relative(3e-4), uniform}) {
-    const Tessellation result = tessellate(set, options);
-    const RenderMesh& mesh = result.mesh;
-    double reference = 0.0;
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-      const BezierPatch3& patch = set.patches()[result.triangle_patches[t]];
-      for (const auto& w : measure_sample_weights) {
-        Vec2 uv = Vec2::Zero();
-        Vec3 linear = Vec3::Zero();
-        for (int c = 0; c < 3; ++c) {
-          uv += w[c] * mesh.uvs[mesh.indices[3 * t + c]];
-          linear += w[c] * mesh.positions[mesh.indices[3 * t + c]];
+    for (const TessellationOptions& options : {relative(1e-3), relative(3e-4), uniform}) {
+      const Tessellation result = tessellate(set, options);
+      const RenderMesh& mesh = result.mesh;
+      double reference = 0.0;
+      for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const BezierPatch3& patch = set.patches()[result.triangle_patches[t]];
+        for (const auto& w : measure_sample_weights) {
+          Vec2 uv = Vec2::Zero();
+          Vec3 linear = Vec3::Zero();
+          for (int c = 0; c < 3; ++c) {
+            uv += w[c] * mesh.uvs[mesh.indices[3 * t + c]];
+            linear += w[c] * mesh.positions[mesh.indices[3 * t + c]];
+          }
+          reference = std::max(reference, (patch.evaluate(uv.x(), uv.y()) - linear).norm());
         }
-        reference = std::max(reference, (patch.evaluate(uv.x(), uv.y()) - linear).norm());
       }
+      EXPECT_GT(reference, 0.0);
+      EXPECT_NEAR(result.measured_error, reference, 1e-12 * set.size());
     }
-    EXPECT_GT(reference, 0.0);
-    EXPECT_NEAR(result.measured_error, reference, 1e-12 * set.size());
-  }
   }
 }
 
