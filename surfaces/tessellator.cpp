@@ -209,6 +209,14 @@ std::int64_t least_segments(const SecondDerivativeBounds& M) {
   return flat ? 1 : 2;
 }
 
+// The parameters k / rate for k = from..to (a side's or the interior's points).
+std::vector<double> ramp(int from, int to, int rate) {
+  std::vector<double> ts;
+  ts.reserve(static_cast<std::size_t>(std::max(to - from + 1, 0)));
+  for (int k = from; k <= to; ++k) ts.push_back(static_cast<double>(k) / rate);
+  return ts;
+}
+
 void check_positive(double value, const char* name) {
   if (!std::isfinite(value) || !(value > 0.0)) {
     throw InvalidInput(detail::message("tessellate: ", name, " ", value, " is not positive and finite"));
@@ -594,11 +602,6 @@ class Tessellator {
     std::vector<Vec3> points;
     std::vector<Vec3> normals;
     std::vector<Vec4> tangents;
-    const auto ramp = [](int from, int to, int rate) {
-      std::vector<double> ts;
-      for (int k = from; k <= to; ++k) ts.push_back(static_cast<double>(k) / rate);
-      return ts;
-    };
     // Sides v0 and v1 with their corners; sides u1 and u0 without.
     for (int k = 0; k < 4; ++k) {
       const int e = r.edges[k];
@@ -809,13 +812,8 @@ class Tessellator {
     const std::size_t interior = out.interior_points();
     if (interior > 0) {
       const std::size_t first = out.first_vertex;
-      const auto ramp = [](int rate) {
-        std::vector<double> ts(static_cast<std::size_t>(rate - 1));
-        for (int k = 1; k < rate; ++k) ts[static_cast<std::size_t>(k - 1)] = static_cast<double>(k) / rate;
-        return ts;
-      };
-      const std::vector<double> us = ramp(out.inner.u);
-      const std::vector<double> vs = ramp(out.inner.v);
+      const std::vector<double> us = ramp(1, out.inner.u - 1, out.inner.u);
+      const std::vector<double> vs = ramp(1, out.inner.v - 1, out.inner.v);
       const std::span<Vec4> tangents =
           options_.tangents ? std::span<Vec4>(mesh.tangents).subspan(first, interior) : std::span<Vec4>();
       pieces_.evaluate_grid(p, us, vs,
