@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <initializer_list>
 #include <limits>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include "core/assert.h"
 #include "core/errors.h"
 
 namespace patchwork {
@@ -36,6 +39,42 @@ void raise_in_v(std::span<const Vec3> net, int n, int m, std::span<Vec3> raised)
       raised[static_cast<std::size_t>(i + (n + 1) * j)] = a * below + (1.0 - a) * above;
     }
   }
+}
+
+// max |d^(a+b) F / du^a dv^b| over the patch: n!/(n-a)! m!/(m-b)! times the largest forward
+// difference Delta_u^a Delta_v^b of the net (zero where a degree is too low).
+template <class At>
+double derivative_net_bound(const At& at, int n, int m, int a, int b) {
+  if (a > n || b > m) return 0.0;
+  // The signed binomial coefficients of the difference operators (orders up to 4 here).
+  const auto coefficients = [](int order) {
+    std::array<double, 5> c{};
+    double binomial = 1.0;
+    for (int k = 0; k <= order; ++k) {
+      c[static_cast<std::size_t>(k)] = (order - k) % 2 == 0 ? binomial : -binomial;
+      binomial = binomial * (order - k) / (k + 1);
+    }
+    return c;
+  };
+  PATCHWORK_ASSERT(a <= 4 && b <= 4, "differences up to order 4");
+  const std::array<double, 5> cu = coefficients(a);
+  const std::array<double, 5> cv = coefficients(b);
+  double scale = 1.0;
+  for (int q = 0; q < a; ++q) scale *= n - q;
+  for (int q = 0; q < b; ++q) scale *= m - q;
+  double largest = 0.0;
+  for (int j = 0; j + b <= m; ++j) {
+    for (int i = 0; i + a <= n; ++i) {
+      Vec3 difference = Vec3::Zero();
+      for (int q = 0; q <= b; ++q) {
+        for (int p = 0; p <= a; ++p) {
+          difference += (cu[static_cast<std::size_t>(p)] * cv[static_cast<std::size_t>(q)]) * at(i + p, j + q);
+        }
+      }
+      largest = std::max(largest, difference.squaredNorm());
+    }
+  }
+  return scale * std::sqrt(largest);
 }
 
 // The norm and directional bounds of the patch with net `at(i, j)` of degrees (n, m).
@@ -108,30 +147,9 @@ SecondDerivativeBounds bounds_of_net(const Net& net_at, int n, int m) {
       d.gram_min[a][b] = d.gram_min[b][a] = low;
     }
   }
-  // Third differences: F_uuu, F_uuv, F_uvv, F_vvv lie in the hulls of their scaled nets.
-  d.third = {0.0, 0.0, 0.0, 0.0};
-  for (int j = 0; j <= m; ++j) {
-    for (int i = 0; i <= n; ++i) {
-      if (i + 3 <= n) {
-        d.third[0] = std::max(d.third[0], n * (n - 1.0) * (n - 2.0) *
-                                              (at(i + 3, j) - 3.0 * at(i + 2, j) + 3.0 * at(i + 1, j) - at(i, j)).norm());
-      }
-      if (i + 2 <= n && j + 1 <= m) {
-        const Vec3 d2 = (at(i + 2, j + 1) - 2.0 * at(i + 1, j + 1) + at(i, j + 1)) -
-                        (at(i + 2, j) - 2.0 * at(i + 1, j) + at(i, j));
-        d.third[1] = std::max(d.third[1], n * (n - 1.0) * m * d2.norm());
-      }
-      if (i + 1 <= n && j + 2 <= m) {
-        const Vec3 d2 = (at(i + 1, j + 2) - 2.0 * at(i + 1, j + 1) + at(i + 1, j)) -
-                        (at(i, j + 2) - 2.0 * at(i, j + 1) + at(i, j));
-        d.third[2] = std::max(d.third[2], n * m * (m - 1.0) * d2.norm());
-      }
-      if (j + 3 <= m) {
-        d.third[3] = std::max(d.third[3], m * (m - 1.0) * (m - 2.0) *
-                                              (at(i, j + 3) - 3.0 * at(i, j + 2) + 3.0 * at(i, j + 1) - at(i, j)).norm());
-      }
-    }
-  }
+  // Third and fourth differences: each mixed partial lies in the hull of its scaled net.
+  for (int k = 0; k < 4; ++k) d.third[k] = derivative_net_bound(at, n, m, 3 - k, k);
+  for (int k = 0; k < 5; ++k) d.fourth[k] = derivative_net_bound(at, n, m, 4 - k, k);
   return {uu, uv, vv, d};
 }
 
@@ -162,6 +180,175 @@ double directional_bound(const DirectionalBounds& d, double du, double dv, int m
   return 0.5 * std::sqrt(q) + third;
 }
 
+// The boxes cover a grid cell's lower triangle (0,0), (1,0), (1,1) (normalised: du = dv = 1),
+// finer towards s = 1/2 and t = 1/2, where the second moments peak and the third vanish: there
+// the bound has to be tight, elsewhere the quadratic part has room. 16 intervals a side, the
+// boxes with t <= s.
+constexpr std::array<double, 17> moment_cuts = {0.0,     0.125,    0.25, 0.3125,   0.375,   0.4375,
+                                                0.46875, 0.484375, 0.5,  0.515625, 0.53125, 0.5625,
+                                                0.625,   0.6875,   0.75, 0.875,    1.0};
+constexpr std::size_t moment_boxes = 16 * 17 / 2;
+
+// At x = (s, t), 0 <= t <= s <= 1, over each box: the range of the second moments
+// (s(1-s), 2t(1-s), t(1-t)) and the largest magnitudes of the third (s(1-s)(1-2s),
+// t(1-s)(1-2s), t(1-s)(1-2t), t(1-t)(1-2t)), box by box (structure of arrays: the bound's loop
+// over the boxes vectorises).
+struct MomentTable {
+  std::array<std::array<double, moment_boxes>, 3> low;
+  std::array<std::array<double, moment_boxes>, 3> high;
+  std::array<std::array<double, moment_boxes>, 4> third;
+};
+
+// max |f| over [x0, x1] for f with critical points `critical`.
+template <class F>
+double largest_magnitude(const F& f, double x0, double x1, std::initializer_list<double> critical) {
+  double largest = std::max(std::abs(f(x0)), std::abs(f(x1)));
+  for (double c : critical) {
+    if (c > x0 && c < x1) largest = std::max(largest, std::abs(f(c)));
+  }
+  return largest;
+}
+
+const MomentTable& lower_triangle_moments() {
+  static const MomentTable table = [] {
+    const auto variance = [](double x) { return x * (1.0 - x); };
+    const auto cubic = [](double x) { return x * (1.0 - x) * (1.0 - 2.0 * x); };  // critical at 1/2 +- sqrt(3)/6
+    const auto left = [](double x) { return (1.0 - x) * (1.0 - 2.0 * x); };       // critical at 3/4
+    const auto right = [](double x) { return x * (1.0 - 2.0 * x); };              // critical at 1/4
+    const double offset = std::sqrt(3.0) / 6.0;
+    // Boxes nearest the diagonal's midpoint first: there the bound is largest, so a test against
+    // a tolerance that fails tends to fail within the first few.
+    std::vector<std::pair<std::size_t, std::size_t>> order;
+    for (std::size_t a = 0; a + 1 < moment_cuts.size(); ++a) {
+      for (std::size_t b = 0; b <= a; ++b) order.emplace_back(a, b);
+    }
+    const auto distance = [](const std::pair<std::size_t, std::size_t>& box) {
+      const double s = 0.5 * (moment_cuts[box.first] + moment_cuts[box.first + 1]) - 0.5;
+      const double t = 0.5 * (moment_cuts[box.second] + moment_cuts[box.second + 1]) - 0.5;
+      return s * s + t * t;
+    };
+    std::stable_sort(order.begin(), order.end(),
+                     [&](const auto& x, const auto& y) { return distance(x) < distance(y); });
+    MomentTable t{};
+    std::size_t r = 0;
+    for (const auto& [a, b] : order) {
+      const double s0 = moment_cuts[a], s1 = moment_cuts[a + 1];
+      {
+        const double t0 = moment_cuts[b], t1 = moment_cuts[b + 1];
+        const double s_high = s0 <= 0.5 && 0.5 <= s1 ? 0.25 : std::max(variance(s0), variance(s1));
+        const double t_high = t0 <= 0.5 && 0.5 <= t1 ? 0.25 : std::max(variance(t0), variance(t1));
+        t.low[0][r] = std::min(variance(s0), variance(s1));
+        t.low[1][r] = 2.0 * t0 * (1.0 - s1);
+        t.low[2][r] = std::min(variance(t0), variance(t1));
+        t.high[0][r] = s_high;
+        // t(1-s) <= s(1-s) and <= t(1-t) where t <= s.
+        t.high[1][r] = std::min(2.0 * t1 * (1.0 - s0), 2.0 * std::min(s_high, t_high));
+        t.high[2][r] = t_high;
+        t.third[0][r] = largest_magnitude(cubic, s0, s1, {0.5 - offset, 0.5 + offset});
+        t.third[1][r] = t1 * largest_magnitude(left, s0, s1, {0.75});
+        t.third[2][r] = (1.0 - s0) * largest_magnitude(right, t0, t1, {0.25});
+        t.third[3][r] = largest_magnitude(cubic, t0, t1, {0.5 - offset, 0.5 + offset});
+        ++r;
+      }
+    }
+    PATCHWORK_ASSERT(r == moment_boxes, "one entry per box");
+    return t;
+  }();
+  return table;
+}
+
+// The bound on a grid cell's lower triangle (0,0), (du,0), (du,dv). At x = (s du, t dv), to
+// fourth order (sum_k lambda_k d_k = 0 removes the first):
+//   L(x) - F(x) = (1/2) sum_i w_i H_i(x) + (1/6) sum_j c_j mu_j T_j(x) + sum_k lambda_k R_k,
+// w = (s(1-s) du^2, 2t(1-s) du dv, t(1-t) dv^2) >= 0 (so the largest Gram entries bound
+// |sum w_i H_i|^2), mu the third moments of MomentTable times du^(3-j) dv^j, c = (1, 3, 3, 1),
+// T the third derivatives, and |R_k| <= (1/24) sum_a C(4,a) |d^4 F / du^(4-a) dv^a| |d_ku|^(4-a)
+// |d_kv|^a, whose weighted sum is at most the normalised m_1 (4-a >= 2) or m_3 (a >= 2) times
+// du^(4-a) dv^a (|d_ku| <= du, |d_kv| <= dv). The directional bound's remainder puts |d_k|^3
+// where the cubic moments are: they vanish at the diagonal's midpoint, where the quadratic term
+// peaks, so taking the maximum of the whole sum box by box recovers most of it.
+double lower_triangle_bound(const DirectionalBounds& d, double du, double dv,
+                            double stop_above = std::numeric_limits<double>::infinity()) {
+  const MomentTable& table = lower_triangle_moments();
+  const std::array<double, 3> scale = {du * du, du * dv, dv * dv};
+  // The coefficients of w_i w_j, and for each whether its largest value over a box is at the
+  // boxes' high ends (g >= 0) or low ends.
+  std::array<double, 6> g{};
+  std::array<const double*, 6> a{};
+  std::array<const double*, 6> b{};
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t j = i; j < 3; ++j, ++k) {
+      g[k] = (i == j ? 1.0 : 2.0) * d.gram_max[i][j] * scale[i] * scale[j];
+      a[k] = g[k] >= 0.0 ? table.high[i].data() : table.low[i].data();
+      b[k] = g[k] >= 0.0 ? table.high[j].data() : table.low[j].data();
+    }
+  }
+  const std::array<double, 4> third = {d.third[0] * du * du * du / 6.0, d.third[1] * du * du * dv / 2.0,
+                                       d.third[2] * du * dv * dv / 2.0, d.third[3] * dv * dv * dv / 6.0};
+  const std::array<double, 5>& f = d.fourth;
+  const double fourth_u = (f[0] * du * du + 4.0 * f[1] * du * dv + 6.0 * f[2] * dv * dv) * du * du / 24.0;
+  const double fourth_v = (4.0 * f[3] * du * du + f[4] * dv * dv) * dv * dv / 24.0;
+  // Chunks of boxes, nearest the midpoint first (MomentTable); stop once one exceeds stop_above.
+  constexpr std::size_t chunk = 8;
+  static_assert(moment_boxes % chunk == 0);
+  double largest = 0.0;
+  for (std::size_t first = 0; first < moment_boxes && largest <= stop_above; first += chunk) {
+    std::array<double, chunk> q{};
+    for (std::size_t m = 0; m < 6; ++m) {
+      for (std::size_t r = 0; r < chunk; ++r) q[r] += g[m] * a[m][first + r] * b[m][first + r];
+    }
+    for (std::size_t r = 0; r < chunk; ++r) {
+      const std::size_t box = first + r;
+      q[r] = 0.5 * std::sqrt(std::max(q[r], 0.0)) + third[0] * table.third[0][box] + third[1] * table.third[1][box] +
+             third[2] * table.third[2][box] + third[3] * table.third[3][box] + fourth_u * table.high[0][box] +
+             fourth_v * table.high[2][box];
+    }
+    largest = std::max(largest, *std::max_element(q.begin(), q.end()));
+  }
+  return largest;
+}
+
+// The cell bound's value at the centres of the cell's diagonal on both halves, where the second
+// moments are (du^2/4, du dv/2, dv^2/4) and the third vanish: no larger than the cell bound (the
+// box holding that point bounds it from above), so a grid whose centre value exceeds a tolerance
+// cannot meet it.
+double grid_cell_centre_value(const DirectionalBounds& d, double du, double dv) {
+  const std::array<double, 3> w = {du * du / 4.0, du * dv / 2.0, dv * dv / 4.0};
+  double q = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) q += d.gram_max[i][j] * w[i] * w[j];
+  }
+  return 0.5 * std::sqrt(std::max(q, 0.0));
+}
+
+// The bounds of the patch with u and v swapped.
+DirectionalBounds transposed(const DirectionalBounds& d) {
+  DirectionalBounds t = d;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      t.gram_max[i][j] = d.gram_max[2 - i][2 - j];
+      t.gram_min[i][j] = d.gram_min[2 - i][2 - j];
+    }
+  }
+  std::reverse(t.third.begin(), t.third.end());
+  std::reverse(t.fourth.begin(), t.fourth.end());
+  return t;
+}
+
+// The bound on both triangles of a grid cell: the upper one (0,0), (du,dv), (0,dv) is the lower
+// one of the patch with u and v swapped.
+double grid_cell_bound(const DirectionalBounds& d, double du, double dv) {
+  return std::max(lower_triangle_bound(d, du, dv), lower_triangle_bound(transposed(d), dv, du));
+}
+
+// The norm bound and the directional bound of a grid: quick, for searching.
+double quick_grid_bound(const SecondDerivativeBounds& M, double du, double dv) {
+  const double norms = (M.uu * du * du + 2.0 * M.uv * du * dv + M.vv * dv * dv) / 8.0;
+  // Grid triangles have their vertices ordered alike in u and v: m_2 >= 0.
+  return M.directions ? std::min(norms, directional_bound(*M.directions, du, dv, 1)) : norms;
+}
+
 }  // namespace
 
 SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch) {
@@ -180,6 +367,7 @@ SecondDerivativeBounds merged_bounds(const SecondDerivativeBounds& a, const Seco
       }
     }
     for (int k = 0; k < 4; ++k) d.third[k] = std::max(d.third[k], b.directions->third[k]);
+    for (int k = 0; k < 5; ++k) d.fourth[k] = std::max(d.fourth[k], b.directions->fourth[k]);
     merged.directions = d;
   }
   return merged;
@@ -196,6 +384,7 @@ SecondDerivativeBounds scaled_bounds(const SecondDerivativeBounds& bounds, doubl
       }
     }
     for (double& t : d.third) t *= s2 * size;
+    for (double& f : d.fourth) f *= s2 * s2;
     scaled.directions = d;
   }
   return scaled;
@@ -269,13 +458,13 @@ SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int p
   return M;
 }
 
-double flatness_bound(const SecondDerivativeBounds& M, double du, double dv) {
+double flatness_bound(const SecondDerivativeBounds& M, double du, double dv, double good_enough) {
   if (!(du > 0.0 && du <= 1.0 && dv > 0.0 && dv <= 1.0)) {
     throw InvalidInput(detail::message("flatness_bound: steps (", du, ", ", dv, ") are not in (0, 1]"));
   }
-  const double norms = (M.uu * du * du + 2.0 * M.uv * du * dv + M.vv * dv * dv) / 8.0;
-  // Grid triangles have their vertices ordered alike in u and v: m_2 >= 0.
-  return M.directions ? std::min(norms, directional_bound(*M.directions, du, dv, 1)) : norms;
+  const double quick = quick_grid_bound(M, du, dv);
+  if (quick <= good_enough || !M.directions) return quick;
+  return std::min(quick, grid_cell_bound(*M.directions, du, dv));
 }
 
 double triangle_flatness_bound(const SecondDerivativeBounds& M, const Vec2& p0, const Vec2& p1, const Vec2& p2,
@@ -310,6 +499,46 @@ double triangle_flatness_bound(const SecondDerivativeBounds& M, const Vec2& p0, 
   }
   const int mixed = negative == 0 ? 1 : positive == 0 ? -1 : 0;
   return std::min(norms, directional_bound(*M.directions, high.x() - low.x(), high.y() - low.y(), mixed));
+}
+
+namespace {
+
+// refined_triangle_flatness_bound on part p of the triangle, with the surface f and the
+// triangle's interpolant l at the part's corners: on the part, |F - L| <= |F - L_p| + |L_p - L|,
+// and the second, linear, is largest at a corner. L stays the whole triangle's (offsets from the
+// parts' own interpolants would add up level by level instead of tending to the true maximum).
+double refined_bound(const SecondDerivativeBounds& M, const std::function<Vec3(const Vec2&)>& surface,
+                     const std::array<Vec2, 3>& p, const std::array<Vec3, 3>& f, const std::array<Vec3, 3>& l,
+                     double aspect, double target, int depth) {
+  const double offset = std::max({(f[0] - l[0]).norm(), (f[1] - l[1]).norm(), (f[2] - l[2]).norm()});
+  const double bound = offset + triangle_flatness_bound(M, p[0], p[1], p[2], aspect);
+  if (bound <= target || depth <= 0) return bound;
+  std::array<Vec2, 3> mid;
+  std::array<Vec3, 3> f_mid;
+  std::array<Vec3, 3> l_mid;
+  for (int k = 0; k < 3; ++k) {
+    const int next = (k + 1) % 3;
+    mid[k] = 0.5 * (p[k] + p[next]);
+    f_mid[k] = surface(mid[k]);
+    l_mid[k] = 0.5 * (l[k] + l[next]);
+  }
+  double worst = refined_bound(M, surface, mid, f_mid, l_mid, aspect, target, depth - 1);
+  for (int k = 0; k < 3 && worst <= target; ++k) {
+    const int previous = (k + 2) % 3;
+    worst = std::max(worst, refined_bound(M, surface, {p[k], mid[k], mid[previous]}, {f[k], f_mid[k], f_mid[previous]},
+                                          {l[k], l_mid[k], l_mid[previous]}, aspect, target, depth - 1));
+  }
+  // Parts not visited once one misses the target leave only the unsplit bound standing.
+  return worst <= target ? std::min(bound, worst) : bound;
+}
+
+}  // namespace
+
+double refined_triangle_flatness_bound(const SecondDerivativeBounds& M, const std::function<Vec3(const Vec2&)>& surface,
+                                       const Vec2& p0, const Vec2& p1, const Vec2& p2, double aspect, double target,
+                                       int depth) {
+  const std::array<Vec3, 3> corners = {surface(p0), surface(p1), surface(p2)};
+  return refined_bound(M, surface, {p0, p1, p2}, corners, corners, aspect, target, depth);
 }
 
 double sampled_grid_distance(const BezierPatch3& patch, std::int64_t nu, std::int64_t nv, int samples) {
@@ -350,7 +579,7 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, s
   // The bound falls as either rate grows (both the norm and the directional bound do), so the
   // smallest rates are found by bisection and the fewest cells by one walk along N_u.
   const auto meets = [&](std::int64_t nu, std::int64_t nv) {
-    return flatness_bound(M, 1.0 / static_cast<double>(nu), 1.0 / static_cast<double>(nv)) <= tolerance;
+    return quick_grid_bound(M, 1.0 / static_cast<double>(nu), 1.0 / static_cast<double>(nv)) <= tolerance;
   };
   if (!meets(limit, limit)) {
     throw InvalidInput(
@@ -391,6 +620,25 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, s
                          std::abs(nu - nv) < std::abs(best.segments_u - best.segments_v));
     if (better) best = {nu, nv};
     if (nv <= floor_v || nu >= best.segments_u * best.segments_v) break;
+  }
+  // The search used the quick bounds; the cell bound is tighter but costs some 30 times as much,
+  // so it only looks for grids with fewer cells than that answer: for each N_u, the most
+  // segments N_v with fewer cells, and if that meets it, the fewest that do.
+  if (!M.directions) return best;
+  const auto meets_cell_bound = [&](std::int64_t nu, std::int64_t nv) {
+    const double du = 1.0 / static_cast<double>(nu);
+    const double dv = 1.0 / static_cast<double>(nv);
+    if (quick_grid_bound(M, du, dv) <= tolerance) return true;
+    if (grid_cell_centre_value(*M.directions, du, dv) > tolerance) return false;  // a lower bound of the cell bound
+    // The two halves one after the other: most grids that fail, fail on the first.
+    return lower_triangle_bound(*M.directions, du, dv, tolerance) <= tolerance &&
+           lower_triangle_bound(transposed(*M.directions), dv, du, tolerance) <= tolerance;
+  };
+  for (std::int64_t nu = min_segments; nu * min_segments < best.segments_u * best.segments_v; ++nu) {
+    std::int64_t nv = (best.segments_u * best.segments_v - 1) / nu;
+    if (nv < min_segments || nu > limit || nv > limit || !meets_cell_bound(nu, nv)) continue;
+    while (nv > min_segments && meets_cell_bound(nu, nv - 1)) --nv;
+    best = {nu, nv};
   }
   return best;
 }

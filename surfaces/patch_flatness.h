@@ -31,6 +31,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -48,6 +49,8 @@ struct DirectionalBounds {
   std::array<std::array<double, 3>, 3> gram_min;
   /// Bounds on |F_uuu|, |F_uuv|, |F_uvv|, |F_vvv| (third differences of the net).
   std::array<double, 4> third;
+  /// Bounds on |F_uuuu|, |F_uuuv|, |F_uuvv|, |F_uvvv|, |F_vvvv| (fourth differences).
+  std::array<double, 5> fourth;
 };
 
 /// The second-derivative bounds of a patch.
@@ -83,9 +86,13 @@ SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int p
 /// \throws InvalidInput unless 1 <= pieces <= 64.
 std::vector<SecondDerivativeBounds> piece_second_derivative_bounds(const BezierPatch3& patch, int pieces);
 
-/// The bound for parameter steps du, dv: the norm bound, or the directional bound where it is
-/// smaller. \throws InvalidInput unless both are in (0, 1].
-double flatness_bound(const SecondDerivativeBounds& bounds, double du, double dv);
+/// The bound for parameter steps du, dv on the grid's triangles (each cell split along its
+/// (i, j)-(i+1, j+1) diagonal): the smallest of the norm bound, the directional bound and the cell
+/// bound (patch_flatness.cpp: the quadratic and cubic Taylor terms together, maximised over boxes
+/// of each triangle, with a fourth-order remainder; some 30 times the cost of the other two).
+/// When the norm or directional bound is already <= `good_enough`, that one is returned without
+/// the cell bound. \throws InvalidInput unless both steps are in (0, 1].
+double flatness_bound(const SecondDerivativeBounds& bounds, double du, double dv, double good_enough = 0.0);
 
 /// The bound on |F - L| over one triangle of parameter points p0, p1, p2 (any shape), L linear on
 /// it: |F - L| <= (1/2) sum_k lambda_k q(p_k - x) with q(d) = M_uu d_u^2 + 2 M_uv |d_u d_v| +
@@ -96,6 +103,16 @@ double flatness_bound(const SecondDerivativeBounds& bounds, double du, double dv
 /// exactly. With directions, the directional bound of the triangle where it is smaller.
 double triangle_flatness_bound(const SecondDerivativeBounds& bounds, const Vec2& p0, const Vec2& p1, const Vec2& p2,
                                double aspect = 1.0);
+
+/// A bound on |F - L| over triangle p0 p1 p2 that is at most `target` where that can be shown:
+/// where triangle_flatness_bound exceeds it, the triangle is split at its edge midpoints, and on
+/// each part |F - L| <= |F - L'| + max |F - L| over the part's corners (L' the part's linear
+/// interpolant: L - L' is linear, so largest at a corner, where L' = F), the first term bounded
+/// the same way, up to `depth` levels. It costs three evaluations of `surface` per split (the
+/// corners' deviations are exact samples), and tends to the true maximum as the parts shrink.
+double refined_triangle_flatness_bound(const SecondDerivativeBounds& bounds,
+                                       const std::function<Vec3(const Vec2&)>& surface, const Vec2& p0, const Vec2& p1,
+                                       const Vec2& p2, double aspect, double target, int depth = 3);
 
 /// max |F(u,v) - L(u,v)| over the triangulated nu x nv grid (each cell split along its diagonal
 /// from (u_a, v_b) to (u_a+1, v_b+1)), sampled at the points of a `samples`-step barycentric

@@ -45,6 +45,21 @@ struct PatchPlan {
   SecondDerivativeBounds bounds{0, 0, 0};
   int nu = 1;
   int nv = 1;
+  // flatness_bound of the last inner grid asked for (the cell bound costs some 0.5 us; the quick
+  // bounds stand where they meet the tolerance).
+  int cell_nu = 0;
+  int cell_nv = 0;
+  double cell = 0.0;
+
+  // The bound of the grid cells of steps (1/nu, 1/nv).
+  double cell_bound(int grid_nu, int grid_nv) {
+    if (grid_nu != cell_nu || grid_nv != cell_nv) {
+      cell_nu = grid_nu;
+      cell_nv = grid_nv;
+      cell = flatness_bound(bounds, 1.0 / grid_nu, 1.0 / grid_nv, tolerance);
+    }
+    return cell;
+  }
 };
 
 // The points along a shared, open or collapsed edge, numbered in its owner's boundary_curve
@@ -223,24 +238,43 @@ void check_positive(double value, const char* name) {
   }
 }
 
-// The a-priori bound of every triangle of a pattern, the largest (dropped triangles included:
-// their parameter triangles map onto a mesh edge, which must be as close to the surface).
-double pattern_bound(const std::vector<Triangle>& kept, const std::vector<Triangle>& dropped,
-                     const std::vector<PatternPoint>& points, const SecondDerivativeBounds& bounds, int nu, int nv) {
-  const double aspect = static_cast<double>(nu) / nv;
-  double bound = 0.0;
-  for (const auto* list : {&kept, &dropped}) {
-    for (const Triangle& t : *list) {
-      bound =
-          std::max(bound, triangle_flatness_bound(bounds, points[t[0]].uv, points[t[1]].uv, points[t[2]].uv, aspect));
-    }
-  }
-  return bound;
+// Whether parameter triangle (a, b, c) is one half of a grid cell of steps (du, dv), split along
+// its diagonal from the low to the high corner (either half, in any vertex order).
+bool is_grid_cell_half(const Vec2& a, const Vec2& b, const Vec2& c, double du, double dv) {
+  const Vec2 low = a.cwiseMin(b).cwiseMin(c);
+  const Vec2 high = a.cwiseMax(b).cwiseMax(c);
+  constexpr double slack = 1e-12;
+  if (std::abs(high.x() - low.x() - du) > slack * du || std::abs(high.y() - low.y() - dv) > slack * dv) return false;
+  const auto is = [](const Vec2& p, double x, double y) { return p.x() == x && p.y() == y; };
+  const auto has = [&](double x, double y) { return is(a, x, y) || is(b, x, y) || is(c, x, y); };
+  return has(low.x(), low.y()) && has(high.x(), high.y()) && (has(high.x(), low.y()) || has(low.x(), high.y()));
 }
 
-double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeBounds& bounds, int nu, int nv) {
-  if (pattern.grid) return flatness_bound(bounds, 1.0 / nu, 1.0 / nv);
-  return pattern_bound(pattern.triangles, {}, pattern.points, bounds, nu, nv);
+// The a-priori bound of every triangle of a pattern, the largest. The halves of inner grid cells
+// get the grid's bound `cell` (flatness_bound, which bounds either half of any cell of those steps); a
+// triangle whose own bound exceeds the tolerance is refined on `surface`
+// (refined_triangle_flatness_bound), so that a stitched triangle is not raised for want of a
+// tighter bound.
+double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeBounds& bounds, int nu, int nv,
+                     double cell, const std::function<Vec3(const Vec2&)>& surface, double tolerance) {
+  if (pattern.grid) return cell;
+  const double du = 1.0 / nu;
+  const double dv = 1.0 / nv;
+  const double aspect = static_cast<double>(nu) / nv;
+  double bound = 0.0;
+  for (const Triangle& t : pattern.triangles) {
+    const Vec2& a = pattern.points[t[0]].uv;
+    const Vec2& b = pattern.points[t[1]].uv;
+    const Vec2& c = pattern.points[t[2]].uv;
+    if (is_grid_cell_half(a, b, c, du, dv)) {
+      bound = std::max(bound, cell);
+      continue;
+    }
+    double own = triangle_flatness_bound(bounds, a, b, c, aspect);
+    if (own > tolerance) own = refined_triangle_flatness_bound(bounds, surface, a, b, c, aspect, tolerance);
+    bound = std::max(bound, own);
+  }
+  return bound;
 }
 
 class Tessellator {
@@ -426,8 +460,7 @@ class Tessellator {
           r.inner_u = c.nu;
           r.inner_v = c.nv;
           for (int k = 0; k < 4; ++k) r.edges[k] = std::max(r.edges[k], along(k, c.nu, c.nv));
-          const InnerGrid raised_inner = inner_grid(r);
-          c.bound = pattern_bound(make_pattern(r), plan.bounds, raised_inner.u, raised_inner.v);
+          c.bound = pattern_bound_of(p, r);
         }
         const auto meets = [&](const Candidate& c) { return c.bound <= plan.tolerance; };
         const Candidate& a = candidates[0];
@@ -454,11 +487,21 @@ class Tessellator {
     PatchPlan& plan = plans_[p];
     const PatternRates r = rates(p);
     if (!same_rates(r, plan.checked_rates)) {
-      const InnerGrid inner = inner_grid(r);
       plan.checked_rates = r;
-      plan.checked_bound = pattern_bound(make_pattern(r), plan.bounds, inner.u, inner.v);
+      plan.checked_bound = pattern_bound_of(p, r);
     }
     return plan.checked_bound;
+  }
+
+  // The bound of patch p's pattern at rates r, its stitched triangles refined against its
+  // tolerance where it has one (pattern_bound).
+  double pattern_bound_of(std::uint32_t p, const PatternRates& r) {
+    PatchPlan& plan = plans_[p];
+    const InnerGrid inner = inner_grid(r);
+    const auto surface = [this, p](const Vec2& uv) { return pieces_.evaluate(p, uv.x(), uv.y()); };
+    const double target = options_.segments ? std::numeric_limits<double>::infinity() : plan.tolerance;
+    return pattern_bound(make_pattern(r), plan.bounds, inner.u, inner.v, plan.cell_bound(inner.u, inner.v), surface,
+                         target);
   }
 
   void check_triangle_budget() const {
@@ -585,11 +628,10 @@ class Tessellator {
     }
     // The bound covers the whole pattern, dropped triangles included (their parameter triangles
     // map onto a mesh edge, which must be as close to the surface).
-    const PatchPlan& plan = plans_[p];
-    out.bound = pattern.grid ? flatness_bound(plan.bounds, 1.0 / out.inner.u, 1.0 / out.inner.v)
-                : same_rates(r, plan.checked_rates)
-                    ? plan.checked_bound
-                    : pattern_bound(make_pattern(r), plan.bounds, out.inner.u, out.inner.v);
+    PatchPlan& plan = plans_[p];
+    out.bound = pattern.grid                        ? plan.cell_bound(out.inner.u, out.inner.v)
+                : same_rates(r, plan.checked_rates) ? plan.checked_bound
+                                                    : pattern_bound_of(p, r);
   }
 
   // Positions, normals (and tangents) of the boundary points, each side (with its corners) as a

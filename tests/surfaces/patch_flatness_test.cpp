@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <functional>
+
 #include "core/errors.h"
 #include "tests/surfaces/patch_fixtures.h"
 
@@ -10,7 +12,6 @@ namespace patchwork {
 namespace {
 
 using testing::coordinate;
-
 
 TEST(PatchFlatness, HyperbolicParaboloidAttainsTheBound) {
   // F = (u, v, uv): M_uu = M_vv = 0, M_uv = 1, bound (1/8) 2 h^2 = h^2 / 4, and on a cell's
@@ -29,7 +30,8 @@ TEST(PatchFlatness, HyperbolicParaboloidAttainsTheBound) {
 
 TEST(PatchFlatness, SecondDifferencesOfAParabolicCylinder) {
   // z = u^2 in degree 2 has control values (0, 0, 1): second difference 1, M_uu = 2 = max |F_uu|.
-  const BezierPatch3 patch = testing::product_patch({Vec3(0, 1, 0), Vec3(0.5, 1, 0), Vec3(1, 1, 1)}, {Vec3(1, 0, 1), Vec3(1, 1, 1)});
+  const BezierPatch3 patch =
+      testing::product_patch({Vec3(0, 1, 0), Vec3(0.5, 1, 0), Vec3(1, 1, 1)}, {Vec3(1, 0, 1), Vec3(1, 1, 1)});
   const SecondDerivativeBounds M = second_derivative_bounds(patch);
   EXPECT_EQ(M.uu, 2.0);
   EXPECT_EQ(M.uv, 0.0);
@@ -128,11 +130,11 @@ RC_GTEST_PROP(PatchFlatness, DirectionalBoundHoldsOnNearlyQuadraticPatches, ()) 
 }
 
 RC_GTEST_PROP(PatchFlatness, MeasuredDistanceNeverExceedsTheBound, ()) {
-  const BezierPatch3 patch = *testing::random_patch(1, 4);
-  const int nu = *rc::gen::inRange(1, 6);
-  const int nv = *rc::gen::inRange(1, 6);
+  const BezierPatch3 patch = *testing::random_patch(1, 5);
+  const int nu = *rc::gen::inRange(1, 9);
+  const int nv = *rc::gen::inRange(1, 9);
   const double bound = flatness_bound(second_derivative_bounds(patch), 1.0 / nu, 1.0 / nv);
-  RC_ASSERT(testing::measured_distance(patch, nu, nv, 4) <= bound * (1.0 + 1e-12) + 1e-12);
+  RC_ASSERT(testing::measured_distance(patch, nu, nv, 6) <= bound * (1.0 + 1e-12) + 1e-12);
 }
 
 RC_GTEST_PROP(PatchFlatness, GridForToleranceIsTheSmallestThatMeetsTheBound, ()) {
@@ -150,6 +152,63 @@ RC_GTEST_PROP(PatchFlatness, GridForToleranceIsTheSmallestThatMeetsTheBound, ())
       RC_ASSERT(flatness_bound(M, 1.0 / nu, 1.0 / nv) > tolerance);
     }
   }
+}
+
+TEST(PatchFlatness, ThirdAndFourthDifferencesOfABiquadratic) {
+  // F = (u, v, u^2 v^2) in degree (2, 2): only P_22 has z = 1. F_uuv = 4v, F_uvv = 4u, F_uuvv = 4;
+  // F_uuu, F_vvv and the other fourth derivatives vanish.
+  std::vector<Vec3> points;
+  for (int j = 0; j <= 2; ++j) {
+    for (int i = 0; i <= 2; ++i) points.emplace_back(i / 2.0, j / 2.0, i == 2 && j == 2 ? 1.0 : 0.0);
+  }
+  const DirectionalBounds d = *second_derivative_bounds(BezierPatch3(2, 2, points)).directions;
+  EXPECT_EQ(d.third, (std::array<double, 4>{0.0, 4.0, 4.0, 0.0}));
+  EXPECT_EQ(d.fourth, (std::array<double, 5>{0.0, 0.0, 4.0, 0.0, 0.0}));
+}
+
+// F = (u, v, u^3) in degree (3, 1).
+BezierPatch3 cubic_ramp() {
+  std::vector<Vec3> points;
+  for (int j = 0; j <= 1; ++j) {
+    for (int i = 0; i <= 3; ++i) points.emplace_back(i / 3.0, j, i == 3 ? 1.0 : 0.0);
+  }
+  return BezierPatch3(3, 1, points);
+}
+
+TEST(PatchFlatness, TheCellBoundsCubicTermVanishesWhereTheQuadraticOnePeaks) {
+  // F = (u, v, u^3): max |F_uu| = 6 gives 6 h^2 / 8 = 0.75 h^2 to second order. The directional
+  // bound's remainder adds |F_uuu| h^3 / 48 = h^3 / 8 on top; the cell bound takes the third
+  // moment box by box, small where the second moment s(1-s) is near 1/4, and adds under h^3 / 40.
+  // Along u, |F - L| = h^2 s(1-s)(3a + h(1+s)) on the cell [a, a+h]: the bound must cover it.
+  const BezierPatch3 patch = cubic_ramp();
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  for (int n : {4, 8, 16}) {
+    const double h = 1.0 / n;
+    const double bound = flatness_bound(M, h, h);
+    EXPECT_LE(bound, 0.75 * h * h + h * h * h / 40.0) << n;
+    EXPECT_GE(bound, 0.75 * h * h) << n;
+    double exact = 0.0;
+    for (int k = 0; k <= 1000; ++k) {
+      const double s = k / 1000.0;
+      exact = std::max(exact, h * h * s * (1.0 - s) * (3.0 * (1.0 - h) + h * (1.0 + s)));
+    }
+    const double measured = testing::measured_distance(patch, n, n, 40);
+    EXPECT_LE(measured, exact * (1.0 + 1e-12)) << n;
+    EXPECT_GE(measured, exact * (1.0 - 1e-3)) << n;
+    EXPECT_LE(exact, bound) << n;
+  }
+}
+
+TEST(PatchFlatness, TheCellBoundPicksGridsTheQuickBoundsMiss) {
+  // At a tolerance between the cell bound and the quick bounds of a grid, grid_for_tolerance
+  // finds that grid or one with fewer cells.
+  const BezierPatch3 patch = cubic_ramp();
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  const double h = 0.25;
+  const double tolerance = 0.75 * h * h + h * h * h / 30.0;  // the quick bounds need 0.75 h^2 + h^3 / 8
+  const GridSize grid = grid_for_tolerance(M, tolerance, 1);
+  EXPECT_LE(grid.segments_u * grid.segments_v, 4);
+  EXPECT_LE(flatness_bound(M, 1.0 / grid.segments_u, 1.0 / grid.segments_v), tolerance);
 }
 
 TEST(PatchFlatness, RejectsBadInput) {
@@ -174,6 +233,42 @@ TEST(TriangleFlatnessBound, AGridTriangleGetsTheGridBound) {
   const double du = 0.25, dv = 0.1;
   EXPECT_NEAR(triangle_flatness_bound(M, Vec2(0, 0), Vec2(du, 0), Vec2(du, dv), dv / du), flatness_bound(M, du, dv),
               1e-15);
+}
+
+TEST(RefinedTriangleFlatnessBound, TendsToTheTrueMaximum) {
+  // F = (u, v, u^3) on the triangle (0,0), (1,0), (0,1): L = (u, v, u), so |F - L| = u - u^3, at
+  // most 2 / (3 sqrt 3) at u = 1/sqrt 3. The a-priori bound is |F_uu| / 8 = 0.75, nearly twice that.
+  const BezierPatch3 patch = cubic_ramp();
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  const std::function<Vec3(const Vec2&)> surface = [&](const Vec2& p) { return patch.evaluate(p.x(), p.y()); };
+  const Vec2 a(0, 0), b(1, 0), c(0, 1);
+  const double exact = 2.0 / (3.0 * std::sqrt(3.0));
+  const double quick = triangle_flatness_bound(M, a, b, c);
+  EXPECT_NEAR(quick, 0.75, 1e-12);
+  // Each level of splitting leaves a quarter of the a-priori part: 6 levels come within 1%.
+  const double refined = refined_triangle_flatness_bound(M, surface, a, b, c, 1.0, 1.01 * exact, 6);
+  EXPECT_LE(refined, 1.01 * exact);
+  EXPECT_GE(refined, exact * (1.0 - 1e-12));
+  // A target below the true maximum cannot be met: the a-priori bound stands.
+  EXPECT_EQ(refined_triangle_flatness_bound(M, surface, a, b, c, 1.0, 0.99 * exact, 6), quick);
+  // A target the a-priori bound meets needs no split.
+  EXPECT_EQ(refined_triangle_flatness_bound(M, surface, a, b, c, 1.0, quick, 6), quick);
+}
+
+// The refined bound still bounds the sampled distance, and is never above the a-priori one.
+RC_GTEST_PROP(RefinedTriangleFlatnessBound, BoundsTheSampledDistanceAndNeverExceedsTheAPrioriBound, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 5);
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  const std::function<Vec3(const Vec2&)> surface = [&](const Vec2& p) { return patch.evaluate(p.x(), p.y()); };
+  std::array<Vec2, 3> p;
+  for (Vec2& q : p) q = Vec2(*testing::coordinate(0, 1), *testing::coordinate(0, 1));
+  const double quick = triangle_flatness_bound(M, p[0], p[1], p[2]);
+  const double target = quick * *testing::coordinate(0.3, 1.1);
+  const double refined =
+      refined_triangle_flatness_bound(M, surface, p[0], p[1], p[2], 1.0, target, *rc::gen::inRange(0, 5));
+  RC_TAG(refined <= target && refined < quick ? "refined below the target" : "a-priori bound");
+  RC_ASSERT(refined <= quick);
+  RC_ASSERT(sampled_triangle_distance(patch, p, 16) <= refined * (1 + 1e-9) + 1e-12 * testing::net_scale(patch));
 }
 
 // The bound holds for any triangle (not just grid cells): sampled |F - L| never exceeds it.
@@ -244,6 +339,7 @@ RC_GTEST_PROP(PatchFlatness, PieceBoundsAreTheSubpatchesAndNoLargerThanTheNets, 
     RC_ASSERT(d.gram_max[i][i] <= norm * norm + gram_slack);
   }
   for (int k = 0; k < 4; ++k) RC_ASSERT(std::abs(d.third[k] - r.third[k]) <= slack * (1.0 + r.third[k]));
+  for (int k = 0; k < 5; ++k) RC_ASSERT(std::abs(d.fourth[k] - r.fourth[k]) <= slack * (1.0 + r.fourth[k]));
 }
 
 }  // namespace
