@@ -26,8 +26,18 @@
 // vertices' coordinates under lambda; du, dv the triangle's extents), and m_2 >= 0 when the
 // vertices are ordered alike in u and v (as in every grid triangle). The first term is at most
 // max over the box of m of |sum m_i H_i(y)|: convex in m, so attained at a corner of the box, and
-// bounded through the Gram matrices of the nets of H_i raised to one degree (convex hull). The
-// flatness bounds below are the smaller of this and the norm bound.
+// bounded through the Gram matrices of the nets of H_i raised to one degree (convex hull).
+//
+// The cell bound. The remainder above ignores that on a grid triangle the cubic moments vanish
+// where the quadratic ones peak (the diagonal's midpoint). Expanded to fourth order instead,
+//   |F(x) - L(x)| <= (1/2) |sum_i m_i H_i(x)| + (1/6) sum_j c_j |mu_j| |T_j| + R_4,
+// with the exact third moments mu_j of x (polynomials in its position), and the maximum of the
+// first two terms together is taken over boxes of a graded partition of each triangle (fine
+// near s = t = 1/2), with the moments' exact ranges over each box. R_4 comes from fourth
+// differences of the net. It costs some 30 times the quick bounds, so grid_for_tolerance
+// searches with those and then asks the cell bound only about grids with fewer cells.
+//
+// flatness_bound is the smallest of the norm, directional and cell bounds.
 
 #include <array>
 #include <cstdint>
