@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "core/streaming_store.h"
 #include "surfaces/surface_normal.h"
 
 namespace patchwork {
@@ -178,14 +179,21 @@ std::vector<double> by_index(std::size_t count, const Rows& table) {
   return out;
 }
 
-// Structure-of-arrays scratch for rows of `count` points.
+// Structure-of-arrays scratch for rows of `count` points, and with `interleaved`, a row of
+// points and one of normals as Vec3s (where rows are streamed out, evaluate_grid_rows).
 struct RowBuffer {
-  explicit RowBuffer(std::size_t count) : storage(7 * count) {
+  RowBuffer(std::size_t count, bool interleaved) : storage((interleaved ? 13 : 7) * count) {
     double* d = storage.data();
     row = {d, d + count, d + 2 * count, d + 3 * count, d + 4 * count, d + 5 * count, d + 6 * count};
+    if (interleaved) {
+      points = d + 7 * count;
+      normals = d + 10 * count;
+    }
   }
   std::vector<double> storage;
   RowScratch row{};
+  double* points = nullptr;
+  double* normals = nullptr;
 };
 
 // Points and unit normals (no tangents) of a patch of u-degree N, a row (fixed v) at a time.
@@ -197,19 +205,30 @@ void evaluate_grid_rows(const BezierPatch3& patch, const PatchGridWeights& weigh
   const std::size_t count_v = weights.vs().size();
   const std::vector<double> bu = by_index<N>(count_u, [&](std::size_t a) { return weights.u_values(a); });
   const std::vector<double> dbu = by_index<N>(count_u, [&](std::size_t a) { return weights.u_derivatives(a); });
-  const RowBuffer buffer(count_u);
+  // Streaming: each row goes to scratch first, then out with streaming stores.
+  const bool stream = out.streaming;
+  const RowBuffer buffer(count_u, stream);
   for (std::size_t b = 0; b < count_v; ++b) {
     std::array<Vec3, N + 1> Q;
     std::array<Vec3, N + 1> dQ;
     contract_in_v(patch, weights, b, Q.data(), dQ.data());
+    double* points = stream ? buffer.points : out.points[count_u * b].data();
+    double* normals = stream ? buffer.normals : out.normals[count_u * b].data();
     const bool degenerate = grid_row<N>(count_u, bu.data(), dbu.data(), Q.data(), dQ.data(), threshold, 1.0, buffer.row,
-                                        out.points[count_u * b].data(), out.normals[count_u * b].data(), allow_avx2);
-    if (!degenerate) continue;
-    for (std::size_t a = 0; a < count_u; ++a) {
-      if (buffer.row.regular[a] == 0.0)
-        out.normals[a + count_u * b] = unit_normal(patch, weights.us()[a], weights.vs()[b]);
+                                        points, normals, allow_avx2);
+    if (degenerate) {
+      for (std::size_t a = 0; a < count_u; ++a) {
+        if (buffer.row.regular[a] != 0.0) continue;
+        const Vec3 normal = unit_normal(patch, weights.us()[a], weights.vs()[b]);
+        std::copy(normal.data(), normal.data() + 3, normals + 3 * a);
+      }
+    }
+    if (stream) {
+      stream_copy(out.points[count_u * b].data(), points, count_u * sizeof(Vec3));
+      stream_copy(out.normals[count_u * b].data(), normals, count_u * sizeof(Vec3));
     }
   }
+  if (stream) stream_fence();
 }
 
 // The same for a single column (one u, many v: the side of a pattern), as one row along v of
@@ -224,7 +243,7 @@ void evaluate_grid_column(const BezierPatch3& patch, const PatchGridWeights& wei
   std::array<Vec3, M + 1> R;
   std::array<Vec3, M + 1> dR;
   contract(patch, weights.u_values(0), weights.u_derivatives(0), false, R.data(), dR.data());
-  const RowBuffer buffer(count_v);
+  const RowBuffer buffer(count_v, false);
   // Along v the kernel's cross product is F_v x F_u: sign -1 gives F_u x F_v.
   const bool degenerate = grid_row<M>(count_v, bv.data(), dbv.data(), R.data(), dR.data(), threshold, -1.0, buffer.row,
                                       out.points[0].data(), out.normals[0].data(), allow_avx2);

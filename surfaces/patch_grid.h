@@ -68,6 +68,10 @@ struct GridSamplesView {
   std::span<Vec3> normals;
   /// Empty: no tangents.
   std::span<Vec4> tangents;
+  /// Write points and normals with streaming stores (core/streaming_store.h): for outputs far
+  /// larger than the caches that are not read back soon (a large tessellation); the values are
+  /// the same. Only the row kernel (degrees 1-3, no tangents, more than one column) streams.
+  bool streaming = false;
 };
 
 /// evaluate_grid(patch, weights, with_tangents) into `out` (tangents if out.tangents is not empty).

@@ -6,12 +6,14 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "core/assert.h"
 #include "core/errors.h"
 #include "core/huge_pages.h"
 #include "core/parallel.h"
+#include "core/streaming_store.h"
 #include "core/union_find.h"
 #include "surfaces/patch_bounding_box.h"
 #include "surfaces/patch_flatness.h"
@@ -213,6 +215,10 @@ namespace {
 
 using detail::PatchOutput;
 using detail::VertexSource;
+
+// Outputs from this size on are written with streaming stores: far beyond the per-core caches
+// (a tessellation this large is not read back while it is written).
+constexpr std::size_t streamed_output_bytes = std::size_t{64} << 20;
 
 // The fewest segments per direction a piece gets: two on a curved piece, so that coarse
 // tolerances keep the topology (with one, a tube of two patches, the teapot's handle, would
@@ -839,6 +845,10 @@ class Tessellator {
     }
     // (3) Interiors and triangles, in parallel. Interior positions get ids after the boundary's,
     // in welded order.
+    const std::size_t output_bytes =
+        vertices * (2 * sizeof(Vec3) + (with_uv ? sizeof(Vec2) : 0) + sizeof(std::uint32_t)) +
+        triangles * 4 * sizeof(std::uint32_t);
+    streaming_ = options_.streaming_stores.value_or(output_bytes >= streamed_output_bytes);
     parallel_for(count_, options_.threads, [&](std::size_t q) {
       const auto p = static_cast<std::uint32_t>(q);
       if (!plans_[p].culled) write_patch(p, mesh, result.triangle_patches, positions_used - interior_base);
@@ -848,8 +858,19 @@ class Tessellator {
   }
 
   // Patch p's interior vertices and all its triangles, into their blocks of `mesh`.
+  // The regular parts go out a row at a time from small buffers, with streaming stores where
+  // the output is far larger than the caches (streaming_, core/streaming_store.h).
   void write_patch(std::uint32_t p, RenderMesh& mesh, std::vector<std::uint32_t>& triangle_patches,
                    std::uint32_t position_offset) const {
+    static_assert(sizeof(Vec2) == 2 * sizeof(double), "Vec2 is two packed doubles");
+    const bool stream = streaming_;
+    const auto put = [stream](void* destination, const void* source, std::size_t bytes) {
+      if (stream) {
+        stream_copy(destination, source, bytes);
+      } else if (bytes > 0) {
+        std::memcpy(destination, source, bytes);
+      }
+    };
     const PatchOutput& out = (*outputs_)[p];
     const std::size_t interior = out.interior_points();
     if (interior > 0) {
@@ -860,17 +881,24 @@ class Tessellator {
           options_.tangents ? std::span<Vec4>(mesh.tangents).subspan(first, interior) : std::span<Vec4>();
       pieces_.evaluate_grid(p, us, vs,
                             {std::span<Vec3>(mesh.positions).subspan(first, interior),
-                             std::span<Vec3>(mesh.normals).subspan(first, interior), tangents});
+                             std::span<Vec3>(mesh.normals).subspan(first, interior), tangents, stream});
+      const std::size_t row = us.size();
       const std::uint32_t position = interior_first_[p] + position_offset;
-      for (std::size_t k = 0; k < interior; ++k)
-        mesh.position_ids[first + k] = position + static_cast<std::uint32_t>(k);
+      std::vector<std::uint32_t> ids(row);
+      for (std::size_t j = 0; j < vs.size(); ++j) {
+        for (std::size_t k = 0; k < row; ++k) ids[k] = position + static_cast<std::uint32_t>(j * row + k);
+        put(mesh.position_ids.data() + first + j * row, ids.data(), row * sizeof(std::uint32_t));
+      }
       if (options_.uv != UvMode::none) {
         // uv_of is affine in (u, v).
         const Vec2 origin = uv_of(p, Vec2(0, 0));
         const Vec2 scale = uv_of(p, Vec2(1, 1)) - origin;
-        Vec2* uv = mesh.uvs.data() + first;
-        for (const double v : vs) {
-          for (const double u : us) *uv++ = origin + scale.cwiseProduct(Vec2(u, v));
+        std::vector<double> uvs(2 * row);
+        for (std::size_t k = 0; k < row; ++k) uvs[2 * k] = origin.x() + scale.x() * us[k];
+        for (std::size_t j = 0; j < vs.size(); ++j) {
+          const double y = origin.y() + scale.y() * vs[j];
+          for (std::size_t k = 0; k < row; ++k) uvs[2 * k + 1] = y;
+          put(mesh.uvs[first + j * row].data(), uvs.data(), row * sizeof(Vec2));
         }
       }
     }
@@ -880,14 +908,29 @@ class Tessellator {
     for (const Triangle& t : out.kept) {
       for (std::uint32_t k : t) *index++ = k < boundary ? out.vertex[k] : k + interior_shift;
     }
-    for_each_inner_triangle(out.inner, out.first_vertex, [&](const Triangle& t) {
-      index[0] = t[0];
-      index[1] = t[1];
-      index[2] = t[2];
-      index += 3;
-    });
-    std::fill_n(triangle_patches.begin() + static_cast<std::ptrdiff_t>(out.first_triangle), out.triangle_count(),
-                patch_of(p));
+    // The inner cells row by row: each row's indices are the first row's shifted by the points
+    // of a row (for_each_inner_triangle's numbering).
+    if (out.inner.u > 2 && out.inner.v > 2) {
+      std::vector<std::uint32_t> first_row;
+      for_each_inner_triangle({out.inner.u, 3, out.inner.grid}, out.first_vertex,
+                              [&](const Triangle& t) { first_row.insert(first_row.end(), t.begin(), t.end()); });
+      std::vector<std::uint32_t> cells(first_row.size());
+      const auto points_per_row = static_cast<std::uint32_t>(out.inner.u - 1);
+      for (int j = 0; j + 2 < out.inner.v; ++j) {
+        const std::uint32_t shift = points_per_row * static_cast<std::uint32_t>(j);
+        for (std::size_t k = 0; k < cells.size(); ++k) cells[k] = first_row[k] + shift;
+        put(index, cells.data(), cells.size() * sizeof(std::uint32_t));
+        index += cells.size();
+      }
+    }
+    PATCHWORK_ASSERT(index == mesh.indices.data() + 3 * (out.first_triangle + out.triangle_count()),
+                     "every triangle of the patch written");
+    const std::vector<std::uint32_t> ids_of_patch(std::min<std::size_t>(out.triangle_count(), 1024), patch_of(p));
+    for (std::size_t t = 0; t < out.triangle_count(); t += ids_of_patch.size()) {
+      put(triangle_patches.data() + out.first_triangle + t, ids_of_patch.data(),
+          std::min(ids_of_patch.size(), out.triangle_count() - t) * sizeof(std::uint32_t));
+    }
+    if (stream) stream_fence();
   }
 
   // --- measurement --------------------------------------------------------------------------
@@ -1076,6 +1119,7 @@ class Tessellator {
   std::vector<PatchOutput>* outputs_ = nullptr;    // in the result's scratch
   std::vector<Vec3>* welded_positions_ = nullptr;  // of the boundary points, by welded id (in the scratch)
   bool unused_interior_ = false;
+  bool streaming_ = false;  // write_patch streams its output (assemble)
   std::size_t culled_ = 0;
   std::int64_t culled_triangles_ = 0;
 };

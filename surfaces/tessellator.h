@@ -83,6 +83,10 @@ struct TessellationOptions {
   /// 4 x 4 pieces when the a-priori triangle count says that saves triangles (a patch whose
   /// curvature varies then gets fine grids only where it bends; see split_surface_pieces).
   bool split_patches = true;
+  /// Write the interior points, attributes and triangles with streaming stores
+  /// (core/streaming_store.h): not read from memory first, not left in the caches. Unset: when
+  /// the output takes at least 64 MiB (about 0.65 M vertices). The output is the same either way.
+  std::optional<bool> streaming_stores;
 };
 
 namespace detail {

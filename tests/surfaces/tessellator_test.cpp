@@ -27,6 +27,14 @@ TessellationOptions relative(double r) {
   return options;
 }
 
+// N x N per patch, in the tessellator's order (no vertex-cache reordering).
+TessellationOptions uniform_unordered(int segments) {
+  TessellationOptions options;
+  options.segments = segments;
+  options.optimize = false;
+  return options;
+}
+
 double triangle_area(const RenderMesh& mesh, std::size_t t) {
   const Vec3& a = mesh.positions[mesh.indices[3 * t]];
   const Vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
@@ -179,12 +187,29 @@ TEST(Tessellator, OutputDoesNotDependOnTheThreadCount) {
   expect_same_tessellation(one, tessellate(teapot(), options));
 }
 
+// Streaming stores (automatic from 64 MiB of output) change how the output is written, not what:
+// forced on and off, on uniform grids and on split, stitched patterns, with and without UVs and
+// tangents.
+TEST(Tessellator, StreamingStoresWriteTheSameOutput) {
+  TessellationOptions uniform = uniform_unordered(40);
+  TessellationOptions fine = relative(1e-3);
+  fine.tangents = true;
+  TessellationOptions plain = relative(1e-2);
+  plain.uv = UvMode::none;
+  for (TessellationOptions* options : {&uniform, &fine, &plain}) {
+    options->streaming_stores = false;
+    const Tessellation ordinary = tessellate(teapot(), *options);
+    options->streaming_stores = true;
+    expect_same_tessellation(tessellate(teapot(), *options), ordinary);
+    options->streaming_stores.reset();
+    expect_same_tessellation(tessellate(teapot(), *options), ordinary);
+  }
+}
+
 // One Tessellation reused through runs that differ in size, mode, attributes and culling (the
 // arrays and the scratch keep storage from run to run) gives each run's fresh result exactly.
 TEST(Tessellator, ReusedOutputGivesTheFreshResult) {
-  TessellationOptions uniform;
-  uniform.segments = 24;
-  uniform.optimize = false;
+  TessellationOptions uniform = uniform_unordered(24);
   TessellationOptions fine = relative(1e-3);
   fine.tangents = true;
   fine.uv = UvMode::atlas;
