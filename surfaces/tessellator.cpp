@@ -298,6 +298,10 @@ class Tessellator {
   void run(Tessellation& result) {
     plan_patches();
     build_edge_classes();
+    // Raising only adds triangles: a plan over the budget is refused before its stitched
+    // patterns are built and bounded (at a tolerance that needs billions of triangles, that
+    // alone would take minutes and gigabytes).
+    check_triangle_budget();
     if (!options_.segments) raise_rates_to_bounds();
     check_triangle_budget();
     number_welded_points();
