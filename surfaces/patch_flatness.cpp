@@ -622,25 +622,24 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, s
     if (nv <= floor_v || nu >= best.segments_u * best.segments_v) break;
   }
   // The search used the quick bounds; the cell bound is tighter but costs some 30 times as much,
-  // so it only looks for grids with fewer cells than that answer: for each N_u within a factor
-  // of 2 of the answer's, the most segments N_v with fewer cells, and if that meets it, the
-  // fewest that do (bisection). Up to 128 x 128 cells a piece: beyond, the candidates would be
-  // many and the cubic terms, which the cell bound tightens most, small (h^3 against h^2).
+  // so it only looks for grids with fewer cells than that answer: for each N_u, the most
+  // segments N_v with fewer cells, and if that meets it, the fewest that do (bisection). Most
+  // candidates fail on the cell bound's value at the cells' centres alone (a few multiplies).
+  // Up to 64 x 64 cells a piece: beyond, the candidates would be many and the cubic terms, which
+  // the cell bound tightens most, small (h^3 against h^2).
   if (!M.directions) return best;
-  constexpr std::int64_t refined_cells = std::int64_t{128} * 128;
-  const GridSize quick = best;
-  if (quick.segments_u * quick.segments_v > refined_cells) return best;
+  constexpr std::int64_t refined_cells = std::int64_t{64} * 64;
+  if (best.segments_u * best.segments_v > refined_cells) return best;
   const auto meets_cell_bound = [&](std::int64_t nu, std::int64_t nv) {
     const double du = 1.0 / static_cast<double>(nu);
     const double dv = 1.0 / static_cast<double>(nv);
-    if (quick_grid_bound(M, du, dv) <= tolerance) return true;
     if (grid_cell_centre_value(*M.directions, du, dv) > tolerance) return false;  // a lower bound of the cell bound
+    if (quick_grid_bound(M, du, dv) <= tolerance) return true;
     // The two halves one after the other: most grids that fail, fail on the first.
     return lower_triangle_bound(*M.directions, du, dv, tolerance) <= tolerance &&
            lower_triangle_bound(transposed(*M.directions), dv, du, tolerance) <= tolerance;
   };
-  for (std::int64_t nu = std::max(min_segments, quick.segments_u / 2);
-       nu <= 2 * quick.segments_u && nu * min_segments < best.segments_u * best.segments_v; ++nu) {
+  for (std::int64_t nu = min_segments; nu * min_segments < best.segments_u * best.segments_v; ++nu) {
     const std::int64_t most = (best.segments_u * best.segments_v - 1) / nu;
     if (most < min_segments || !meets_cell_bound(nu, most)) continue;
     best = {nu, smallest(most, [&](std::int64_t nv) { return meets_cell_bound(nu, nv); })};
