@@ -149,7 +149,7 @@ void run_subdivide(std::ostream& out, const SubdivideArguments& arguments) {
     out << "  tolerance:      " << result.tolerance << "\n";
   }
   if (std::isfinite(result.error_bound)) {
-    out << "  error bound:    " << result.error_bound << " (a priori)\n";
+    out << "  error bound:    " << result.error_bound << " (guaranteed)\n";
   } else {
     out << "  error bound:    none (no derivative bound for this scheme)\n";
   }

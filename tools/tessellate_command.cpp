@@ -205,7 +205,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   } else {
     out << "  tolerance:      " << result.tolerance << "\n";
   }
-  out << "  error bound:    " << result.error_bound << " (a priori)\n";
+  out << "  error bound:    " << result.error_bound << " (guaranteed)\n";
   out << "  measured error: " << result.measured_error << "\n";
   for (std::size_t k = 0; k < coarser.size(); ++k) {
     out << "  level " << k + 1 << ":        " << coarser[k].mesh.triangle_count() << " triangles, tolerance "
