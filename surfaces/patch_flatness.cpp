@@ -286,9 +286,7 @@ double lower_triangle_bound(const DirectionalBounds& d, double du, double dv,
   }
   const std::array<double, 4> third = {d.third[0] * du * du * du / 6.0, d.third[1] * du * du * dv / 2.0,
                                        d.third[2] * du * dv * dv / 2.0, d.third[3] * dv * dv * dv / 6.0};
-  const std::array<double, 5>& f = d.fourth;
-  const double fourth_u = (f[0] * du * du + 4.0 * f[1] * du * dv + 6.0 * f[2] * dv * dv) * du * du / 24.0;
-  const double fourth_v = (4.0 * f[3] * du * du + f[4] * dv * dv) * dv * dv / 24.0;
+  const auto [fourth_u, fourth_v] = detail::fourth_order_coefficients(d.fourth, du, dv);
   // Chunks of boxes, nearest the midpoint first (MomentTable); stop once one exceeds stop_above.
   constexpr std::size_t chunk = 8;
   static_assert(moment_boxes % chunk == 0);
@@ -321,6 +319,22 @@ double grid_cell_centre_value(const DirectionalBounds& d, double du, double dv) 
   }
   return 0.5 * std::sqrt(std::max(q, 0.0));
 }
+
+}  // namespace
+
+namespace detail {
+
+std::array<double, 2> fourth_order_coefficients(const std::array<double, 5>& f, double du, double dv) {
+  // Term a: C(4, a) f_a du^(4-a) dv^a |d_ku/du|^(4-a) |d_kv/dv|^a; the normalised offsets are at
+  // most 1, so the product is at most (d_ku/du)^2 where 4-a >= 2 and (d_kv/dv)^2 where a >= 2,
+  // whose weighted sums are the normalised m_1 and m_3.
+  return {(f[0] * du * du + 4.0 * f[1] * du * dv + 6.0 * f[2] * dv * dv) * du * du / 24.0,
+          (4.0 * f[3] * du * dv + f[4] * dv * dv) * dv * dv / 24.0};
+}
+
+}  // namespace detail
+
+namespace {
 
 // The bounds of the patch with u and v swapped.
 DirectionalBounds transposed(const DirectionalBounds& d) {

@@ -130,6 +130,14 @@ double refined_triangle_flatness_bound(const SecondDerivativeBounds& bounds,
 /// distance). \throws InvalidInput unless nu, nv, samples >= 1.
 double sampled_grid_distance(const BezierPatch3& patch, std::int64_t nu, std::int64_t nv, int samples);
 
+namespace detail {
+/// The fourth-order Taylor remainder of the cell bound at steps (du, dv) with fourth-derivative
+/// bounds f (DirectionalBounds::fourth), as {c_1, c_3}: (1/24) sum_k lambda_k |D^4 F [d_k]^4| <=
+/// c_1 m_1 + c_3 m_3 with m the normalised second moments (sum_k lambda_k (d_ku/du)^2 and
+/// (d_kv/dv)^2) of any point of a grid triangle (exposed for a test against brute force).
+std::array<double, 2> fourth_order_coefficients(const std::array<double, 5>& f, double du, double dv);
+}  // namespace detail
+
 /// A grid of segments_u x segments_v cells.
 struct GridSize {
   std::int64_t segments_u;

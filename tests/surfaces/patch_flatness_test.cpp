@@ -211,6 +211,44 @@ TEST(PatchFlatness, TheCellBoundPicksGridsTheQuickBoundsMiss) {
   EXPECT_LE(flatness_bound(M, 1.0 / grid.segments_u, 1.0 / grid.segments_v), tolerance);
 }
 
+// The cell bound's fourth-order remainder against brute force: at points of both halves of a
+// cell, (1/24) sum_k lambda_k sum_a C(4,a) f_a |d_ku|^(4-a) |d_kv|^a (the most |D^4 F[d_k]^4| can
+// be with |d^4 F / du^(4-a) dv^a| <= f_a) is at most c_1 m_1 + c_3 m_3, m the normalised second
+// moments. Cells from flat to tall, each fourth derivative alone and all together.
+RC_GTEST_PROP(PatchFlatness, FourthOrderRemainderCoversEveryPointOfACell, ()) {
+  std::array<double, 5> f{};
+  const int alone = *rc::gen::inRange(-1, 5);
+  for (int a = 0; a < 5; ++a) f[a] = alone < 0 || alone == a ? *testing::coordinate(0.1, 10.0) : 0.0;
+  const double du = std::pow(2.0, -*rc::gen::inRange(0, 8));
+  const double dv = std::pow(2.0, -*rc::gen::inRange(0, 8));
+  const auto [c1, c3] = detail::fourth_order_coefficients(f, du, dv);
+  constexpr std::array<double, 5> binomial = {1, 4, 6, 4, 1};
+  // Lower half (0,0), (1,0), (1,1) and upper half (0,0), (1,1), (0,1), in units of the steps.
+  const std::array<std::array<Vec2, 3>, 2> halves = {std::array<Vec2, 3>{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1)},
+                                                     std::array<Vec2, 3>{Vec2(0, 0), Vec2(1, 1), Vec2(0, 1)}};
+  const int samples = 12;
+  for (const auto& corners : halves) {
+    for (int i = 0; i <= samples; ++i) {
+      for (int j = 0; i + j <= samples; ++j) {
+        const std::array<double, 3> lambda = {1.0 - (i + j) / double(samples), i / double(samples),
+                                              j / double(samples)};
+        const Vec2 x = lambda[0] * corners[0] + lambda[1] * corners[1] + lambda[2] * corners[2];
+        double remainder = 0.0, m1 = 0.0, m3 = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const Vec2 d = corners[k] - x;
+          m1 += lambda[k] * d.x() * d.x();
+          m3 += lambda[k] * d.y() * d.y();
+          for (int a = 0; a < 5; ++a) {
+            remainder += lambda[k] * binomial[a] * f[a] * std::pow(std::abs(d.x()) * du, 4 - a) *
+                         std::pow(std::abs(d.y()) * dv, a) / 24.0;
+          }
+        }
+        RC_ASSERT(remainder <= (c1 * m1 + c3 * m3) * (1.0 + 1e-12) + 1e-300);
+      }
+    }
+  }
+}
+
 TEST(PatchFlatness, RejectsBadInput) {
   const SecondDerivativeBounds M{1.0, 1.0, 1.0};
   EXPECT_THROW(flatness_bound(M, 0.0, 0.5), InvalidInput);
