@@ -77,7 +77,8 @@ struct SecondDerivativeBounds {
 SecondDerivativeBounds merged_bounds(const SecondDerivativeBounds& a, const SecondDerivativeBounds& b);
 
 /// The bounds in the parameters of a sub-domain `size` times as wide in u and v (chain rule:
-/// second derivatives times size^2, third times size^3). \pre size > 0.
+/// second derivatives times size^2, their Gram entries times size^4, third derivatives times
+/// size^3, fourth times size^4). \pre size > 0.
 SecondDerivativeBounds scaled_bounds(const SecondDerivativeBounds& bounds, double size);
 
 /// M_uu, M_uv, M_vv of the patch (zero where a degree is too low), with its directional bounds.
@@ -145,7 +146,9 @@ struct GridSize {
 };
 
 /// The grid with the fewest cells, at least min_segments per side, whose bound is <= tolerance
-/// (ties: the more even grid).
+/// (ties under the quick bounds: the more even grid). Searched with the norm and directional
+/// bounds, then for fewer cells under the cell bound (up to 64 x 64 cells); the fewest assumes
+/// the bound falls as either rate grows, which the tests check against brute force.
 /// \throws InvalidInput if the tolerance is not positive and finite, min_segments is not in
 ///         [1, 2^20], or a side would need more than 2^20 segments.
 GridSize grid_for_tolerance(const SecondDerivativeBounds& bounds, double tolerance, std::int64_t min_segments = 1);
