@@ -224,8 +224,8 @@ void evaluate_grid_rows(const BezierPatch3& patch, const PatchGridWeights& weigh
       }
     }
     if (stream) {
-      stream_copy(out.points[count_u * b].data(), points, count_u * sizeof(Vec3));
-      stream_copy(out.normals[count_u * b].data(), normals, count_u * sizeof(Vec3));
+      stream_copy(out.points.data() + count_u * b, points, count_u * sizeof(Vec3));
+      stream_copy(out.normals.data() + count_u * b, normals, count_u * sizeof(Vec3));
     }
   }
   if (stream) stream_fence();

@@ -902,7 +902,7 @@ class Tessellator {
         for (std::size_t j = 0; j < vs.size(); ++j) {
           const double y = origin.y() + scale.y() * vs[j];
           for (std::size_t k = 0; k < row; ++k) uvs[2 * k + 1] = y;
-          put(mesh.uvs[first + j * row].data(), uvs.data(), row * sizeof(Vec2));
+          put(mesh.uvs.data() + first + j * row, uvs.data(), row * sizeof(Vec2));
         }
       }
     }
