@@ -233,23 +233,21 @@ const MomentTable& lower_triangle_moments() {
     std::size_t r = 0;
     for (const auto& [a, b] : order) {
       const double s0 = moment_cuts[a], s1 = moment_cuts[a + 1];
-      {
-        const double t0 = moment_cuts[b], t1 = moment_cuts[b + 1];
-        const double s_high = s0 <= 0.5 && 0.5 <= s1 ? 0.25 : std::max(variance(s0), variance(s1));
-        const double t_high = t0 <= 0.5 && 0.5 <= t1 ? 0.25 : std::max(variance(t0), variance(t1));
-        t.low[0][r] = std::min(variance(s0), variance(s1));
-        t.low[1][r] = 2.0 * t0 * (1.0 - s1);
-        t.low[2][r] = std::min(variance(t0), variance(t1));
-        t.high[0][r] = s_high;
-        // t(1-s) <= s(1-s) and <= t(1-t) where t <= s.
-        t.high[1][r] = std::min(2.0 * t1 * (1.0 - s0), 2.0 * std::min(s_high, t_high));
-        t.high[2][r] = t_high;
-        t.third[0][r] = largest_magnitude(cubic, s0, s1, {0.5 - offset, 0.5 + offset});
-        t.third[1][r] = t1 * largest_magnitude(left, s0, s1, {0.75});
-        t.third[2][r] = (1.0 - s0) * largest_magnitude(right, t0, t1, {0.25});
-        t.third[3][r] = largest_magnitude(cubic, t0, t1, {0.5 - offset, 0.5 + offset});
-        ++r;
-      }
+      const double t0 = moment_cuts[b], t1 = moment_cuts[b + 1];
+      const double s_high = s0 <= 0.5 && 0.5 <= s1 ? 0.25 : std::max(variance(s0), variance(s1));
+      const double t_high = t0 <= 0.5 && 0.5 <= t1 ? 0.25 : std::max(variance(t0), variance(t1));
+      t.low[0][r] = std::min(variance(s0), variance(s1));
+      t.low[1][r] = 2.0 * t0 * (1.0 - s1);
+      t.low[2][r] = std::min(variance(t0), variance(t1));
+      t.high[0][r] = s_high;
+      // t(1-s) <= s(1-s) and <= t(1-t) where t <= s.
+      t.high[1][r] = std::min(2.0 * t1 * (1.0 - s0), 2.0 * std::min(s_high, t_high));
+      t.high[2][r] = t_high;
+      t.third[0][r] = largest_magnitude(cubic, s0, s1, {0.5 - offset, 0.5 + offset});
+      t.third[1][r] = t1 * largest_magnitude(left, s0, s1, {0.75});
+      t.third[2][r] = (1.0 - s0) * largest_magnitude(right, t0, t1, {0.25});
+      t.third[3][r] = largest_magnitude(cubic, t0, t1, {0.5 - offset, 0.5 + offset});
+      ++r;
     }
     PATCHWORK_ASSERT(r == moment_boxes, "one entry per box");
     return t;
@@ -351,9 +349,13 @@ DirectionalBounds transposed(const DirectionalBounds& d) {
 }
 
 // The bound on both triangles of a grid cell: the upper one (0,0), (du,dv), (0,dv) is the lower
-// one of the patch with u and v swapped.
-double grid_cell_bound(const DirectionalBounds& d, double du, double dv) {
-  return std::max(lower_triangle_bound(d, du, dv), lower_triangle_bound(transposed(d), dv, du));
+// one of the patch with u and v swapped. Stops (with a value above it) once one half exceeds
+// stop_above: a test against a tolerance that fails mostly fails on the first half.
+double grid_cell_bound(const DirectionalBounds& d, double du, double dv,
+                       double stop_above = std::numeric_limits<double>::infinity()) {
+  const double lower = lower_triangle_bound(d, du, dv, stop_above);
+  if (lower > stop_above) return lower;
+  return std::max(lower, lower_triangle_bound(transposed(d), dv, du, stop_above));
 }
 
 // The norm bound and the directional bound of a grid: quick, for searching.
@@ -649,9 +651,7 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, s
     const double dv = 1.0 / static_cast<double>(nv);
     if (grid_cell_centre_value(*M.directions, du, dv) > tolerance) return false;  // a lower bound of the cell bound
     if (quick_grid_bound(M, du, dv) <= tolerance) return true;
-    // The two halves one after the other: most grids that fail, fail on the first.
-    return lower_triangle_bound(*M.directions, du, dv, tolerance) <= tolerance &&
-           lower_triangle_bound(transposed(*M.directions), dv, du, tolerance) <= tolerance;
+    return grid_cell_bound(*M.directions, du, dv, tolerance) <= tolerance;
   };
   for (std::int64_t nu = min_segments; nu * min_segments < best.segments_u * best.segments_v; ++nu) {
     const std::int64_t most = (best.segments_u * best.segments_v - 1) / nu;
