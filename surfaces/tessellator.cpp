@@ -104,6 +104,8 @@ struct PatchOutput {
   // inner grid has 2 segments in a direction): the assembled mesh has unused vertices to drop.
   bool unused_interior = false;
   double bound = 0.0;
+  // Largest distance from a boundary point's own surface point to its welded position.
+  double weld_gap = 0.0;
 
   // Empties every array, keeping its storage for the next run.
   void clear() {
@@ -119,6 +121,7 @@ struct PatchOutput {
     vertex.clear();
     unused_interior = false;
     bound = 0.0;
+    weld_gap = 0.0;
   }
   std::uint32_t boundary_points() const { return static_cast<std::uint32_t>(pattern.points.size()); }
   std::size_t interior_points() const {
@@ -731,6 +734,17 @@ class Tessellator {
         if (out.owner[k]) (*welded_positions_)[out.welded[k]] = out.positions[k];
       }
     }
+    // A welded point takes its owner's position; where the patches' edges differ (PatchSet joins
+    // edges whose control points agree within its tolerance) that moves it off this patch's own
+    // surface point. Every mesh point of a triangle is an affine combination of its corners, so
+    // it moves by at most the largest corner move: |S - L'| <= bound + max |d|.
+    for (PatchOutput& out : *outputs_) {
+      double moved = 0.0;
+      for (std::size_t k = 0; k < out.welded.size(); ++k) {
+        if (!out.owner[k]) moved = std::max(moved, ((*welded_positions_)[out.welded[k]] - out.positions[k]).norm());
+      }
+      out.weld_gap = moved;
+    }
     // (1) Boundary vertices, chained per welded point: first_vertex[id] -> next_vertex[...] -> ...
     // At a pole hundreds of points share one welded id, and a vertex can only serve points with
     // its UV, so there the chains are per (id, UV), their heads in a hash table. A vertex is known
@@ -764,11 +778,13 @@ class Tessellator {
     const bool with_uv = options_.uv != UvMode::none;
     bool unused_interior = false;
     double error_bound = 0.0;
+    double weld_gap = 0.0;
     double tolerance = 0.0;
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       PatchOutput& out = (*outputs_)[p];
-      error_bound = std::max(error_bound, out.bound);
+      error_bound = std::max(error_bound, out.bound + out.weld_gap);
+      weld_gap = std::max(weld_gap, out.weld_gap);
       tolerance = std::max(tolerance, plans_[p].tolerance);
       unused_interior = unused_interior || out.unused_interior;
       out.vertex.assign(out.boundary_points(), no_id);
@@ -816,6 +832,7 @@ class Tessellator {
     result.culled_patches = culled_;
     result.culled_triangles = culled_triangles_;
     result.error_bound = error_bound;
+    result.weld_gap = weld_gap;
     result.tolerance = tolerance;
     result.measured_error = 0.0;
     RenderMesh& mesh = result.mesh;

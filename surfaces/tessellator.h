@@ -132,8 +132,13 @@ struct Tessellation {
   std::vector<std::uint32_t> triangle_patches;
   /// The absolute tolerance used (for a camera: the largest over the patches).
   double tolerance = 0.0;
-  /// Max over triangles of the a-priori bound on |S - L|.
+  /// Max over triangles of the guaranteed bound on |S - L|: the pattern's bound plus the patch's
+  /// weld gap.
   double error_bound = 0.0;
+  /// The largest distance a welded boundary point lies from its own patch's surface point (the
+  /// edges of a PatchSet are joined where their control points agree within its tolerance, and a
+  /// joined point takes one side's position); part of error_bound.
+  double weld_gap = 0.0;
   /// Max over triangles of the sampled |S - L| (0 if not measured).
   double measured_error = 0.0;
   /// Patches not tessellated by frustum or back-face culling.

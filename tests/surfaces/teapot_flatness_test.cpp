@@ -12,7 +12,7 @@ namespace patchwork {
 namespace {
 
 
-TEST(TeapotFlatness, BoundHoldsAndIsWithinThreeTimesTheMeasuredDistance) {
+TEST(TeapotFlatness, BoundHoldsAndIsWithinTheDocumentedFactorOfTheMeasuredDistance) {
   const std::vector<BezierPatch3> patches = read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt");
   double loosest = 0.0;
   for (std::size_t k = 0; k < patches.size(); ++k) {
@@ -27,6 +27,8 @@ TEST(TeapotFlatness, BoundHoldsAndIsWithinThreeTimesTheMeasuredDistance) {
     loosest = std::max(loosest, bound / measured);
   }
   std::cout << "teapot at tolerance 1e-2: the flatness bound is at most " << loosest << " x the measured distance\n";
+  // README and docs/surfaces.md quote 1.67x: the figure is held here, not only the loose 3x.
+  EXPECT_LE(loosest, 1.675);
 }
 
 }  // namespace

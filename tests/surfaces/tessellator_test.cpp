@@ -139,7 +139,17 @@ TEST(Tessellator, UniformSegmentsGiveTheClassicCount) {
   // 32 patches of 16 x 16 cells, 2 triangles each, less one triangle per cell at the 8 collapsed
   // edges (16 cells each).
   EXPECT_EQ(result.mesh.triangle_count(), 32u * 16 * 16 * 2 - 8u * 16);
-  expect_render_ready(teapot(), result, result.error_bound);
+  // Without a tolerance the bound is still computed; it is no looser than the Filip-Magedson-
+  // Markot norm bound (M_uu du^2 + 2 M_uv du dv + M_vv dv^2) / 8 from each whole patch's net,
+  // computed here on its own (the tessellator's sub-net, directional and cell bounds are tighter).
+  double norm_bound = 0.0;
+  const double h = 1.0 / 16;
+  for (const BezierPatch3& patch : teapot().patches()) {
+    const SecondDerivativeBounds M = second_derivative_bounds(patch);
+    norm_bound = std::max(norm_bound, (M.uu + 2 * M.uv + M.vv) * h * h / 8);
+  }
+  EXPECT_GT(result.error_bound, 0.0);
+  expect_render_ready(teapot(), result, norm_bound);
 }
 
 TEST(Tessellator, PolesAreOneVertexWithTheExactLimitNormal) {
@@ -398,6 +408,43 @@ TEST(Tessellator, CreasesSplitVerticesButStayWelded) {
   EXPECT_EQ(report.components, 1);
   EXPECT_EQ(report.boundary_loops, 1);
   EXPECT_TRUE(report.manifold);
+}
+
+// PatchSet joins edges whose control points agree within its tolerance; the tessellator then
+// gives both patches one side's points, which moves the other side's by the gap. The gap is part
+// of the bound: the mesh is within error_bound of each patch's own surface (measured), and the
+// gap reported is the exact offset (the second patch's edge row moved by delta).
+TEST(Tessellator, WeldGapIsPartOfTheBound) {
+  const double delta = 2e-4;
+  // A biquadratic height field over [0,1]^2.
+  const double heights[3][3] = {{0.0, 0.3, 0.1}, {0.4, -0.2, 0.2}, {0.1, 0.3, 0.0}};
+  std::vector<Vec3> left_points;
+  for (int j = 0; j <= 2; ++j) {
+    for (int i = 0; i <= 2; ++i) left_points.emplace_back(0.5 * i, 0.5 * j, heights[j][i]);
+  }
+  const BezierPatch3 left(2, 2, left_points);
+  // The right patch starts where `left` ends (its u0 edge on left's u1 edge), moved by delta in z.
+  std::vector<Vec3> right_points;
+  for (int j = 0; j <= left.degree_v(); ++j) {
+    for (int i = 0; i <= left.degree_u(); ++i) {
+      Vec3 q = left.control_point(i, j) + Vec3(1, 0, 0);
+      if (i == 0) q = left.control_point(left.degree_u(), j) + Vec3(0, 0, delta);
+      right_points.push_back(q);
+    }
+  }
+  const BezierPatch3 right(left.degree_u(), left.degree_v(), right_points);
+  const PatchSet set({left, right}, 1e-3);
+  ASSERT_EQ(set.shared_edges().size(), 1u);
+  TessellationOptions options;
+  options.tolerance = 1e-5;
+  const Tessellation result = tessellate(set, options);
+  EXPECT_NEAR(result.weld_gap, delta, 1e-12);
+  EXPECT_GE(result.measured_error, 0.99 * delta);
+  EXPECT_LE(result.measured_error, result.error_bound);
+  EXPECT_LE(result.error_bound, *options.tolerance + result.weld_gap);
+  // Where the edges agree exactly there is nothing to add.
+  const Tessellation exact = tessellate(PatchSet({left}), options);
+  EXPECT_EQ(exact.weld_gap, 0.0);
 }
 
 // Random patches and random C0-joined grids of patches, at random tolerances.
