@@ -18,6 +18,7 @@
 #include "surfaces/patch_bounding_box.h"
 #include "surfaces/patch_flatness.h"
 #include "surfaces/patch_grid.h"
+#include "surfaces/surface_integrals.h"
 #include "surfaces/tessellation_pattern.h"
 
 namespace patchwork {
@@ -360,6 +361,7 @@ class Tessellator {
       check_positive(options_.pixel_tolerance, "pixel tolerance");
     }
     double focal = options_.camera ? focal_length_pixels(*options_.camera) : 0.0;
+    const bool cull_back_faces = options_.camera && back_faces_hidden(*options_.camera);
     // Patches reaching behind the near limit get the tolerance of this depth.
     const double near_depth = 1e-3 * pieces_.diagonal;
     for (std::size_t p = 0; p < count_; ++p) {
@@ -374,7 +376,7 @@ class Tessellator {
         const Camera& camera = *options_.camera;
         const BezierPatch3& patch = (*pieces_.patches)[p];
         plan.tolerance = options_.pixel_tolerance * std::max(nearest_depth(patch, camera), near_depth) / focal;
-        plan.culled = outside_frustum(patch, camera) || back_facing(patch, camera.eye);
+        plan.culled = outside_frustum(patch, camera) || (cull_back_faces && back_facing(patch, camera.eye));
       }
       GridSize grid{};
       try {
@@ -393,6 +395,22 @@ class Tessellator {
         culled_triangles_ += 2 * grid.segments_u * grid.segments_v;
       }
     }
+  }
+
+  // Whether patches facing away from the camera may be left out (BackFaceCulling).
+  bool back_faces_hidden(const Camera& camera) const {
+    switch (options_.back_face_culling) {
+      case BackFaceCulling::always: return true;
+      case BackFaceCulling::never: return false;
+      case BackFaceCulling::automatic: break;
+    }
+    if (!pieces_.closed_outward) return false;
+    // Outside the box of the control points is outside the solid (it lies in their convex hull).
+    Eigen::AlignedBox3d box;
+    for (const BezierPatch3& patch : *pieces_.patches) {
+      for (const Vec3& q : patch.control_points()) box.extend(q);
+    }
+    return !box.contains(camera.eye);
   }
 
   // Classes for every edge of every patch that is tessellated: a shared edge whose two patches
@@ -1185,6 +1203,12 @@ double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {
   return bounding_box(std::span<const BezierPatch3>(set.patches()), 1e-6 * set.size()).diagonal().norm();
 }
 
+// The set bounds a solid with its normals pointing out (SurfacePieces::closed_outward).
+bool encloses_outward(const PatchSet& set) {
+  const PatchSetReport r = report(set);
+  return r.closed && r.consistently_oriented && enclosed_volume(set.patches()) > 0.0;
+}
+
 // Pieces of `set`, each patch split k x k (k = 1: the patches themselves).
 SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k,
                         double diagonal) {
@@ -1197,6 +1221,7 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     for (const SharedEdge& shared : set.shared_edges())
       pieces.shared.push_back({shared.first, shared.second, shared.reversed});
     pieces.collapsed = set.collapsed_edges();
+    pieces.closed_outward = encloses_outward(set);
     for (std::size_t p = 0; p < patches.size(); ++p) pieces.bounds.push_back(split_bounds(cells[p], 1, 0, 0));
     pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
                                       GridSamplesView out) {

@@ -32,7 +32,9 @@
 // thread count.
 //
 // Culling. With a camera, each patch gets its tolerance from its nearest depth and patches
-// outside the frustum or facing away are not tessellated (surfaces/view_culling.h).
+// outside the frustum are not tessellated (surfaces/view_culling.h). Patches facing away are
+// left out only where no hole can open (BackFaceCulling): on an open surface such as the teapot
+// the back of a patch is seen through the openings.
 
 #include <array>
 #include <cstdint>
@@ -54,6 +56,17 @@ namespace patchwork {
 /// How the UVs are made.
 enum class UvMode { none, patch, atlas };
 
+/// Which patches facing away from the camera's eye are left out.
+enum class BackFaceCulling {
+  /// Only where that cannot open a hole: the surface bounds a solid (SurfacePieces::closed_outward)
+  /// and the eye is outside the box of its control points.
+  automatic,
+  /// Every back-facing patch (the caller knows the back is never seen).
+  always,
+  /// None (frustum culling stays).
+  never
+};
+
 struct TessellationOptions {
   /// Exactly one of tolerance, relative_tolerance, segments and camera (with pixel_tolerance).
   /// Absolute tolerance, model units.
@@ -66,6 +79,8 @@ struct TessellationOptions {
   std::optional<Camera> camera;
   /// Tolerance in pixels for the camera mode.
   double pixel_tolerance = 0.5;
+  /// Back-face culling in the camera mode.
+  BackFaceCulling back_face_culling = BackFaceCulling::automatic;
 
   /// Normals (and tangents) further apart than this, radians, split a vertex.
   double crease_angle = 0.0174532925199432958;  // 1 degree
@@ -181,6 +196,12 @@ struct SurfacePieces {
   std::function<Vec3(std::uint32_t p, double u, double v)> evaluate;
   /// The pieces as Bezier patches, when they are (the camera mode needs them; else null).
   const std::vector<BezierPatch3>* patches = nullptr;
+  /// The pieces bound a solid with F_u x F_v pointing out of it: no open edge, every shared
+  /// edge walked in opposite directions, positive enclosed volume. Seen from outside, a ray
+  /// leaves the solid only after entering it through a front-facing point, so back-facing
+  /// pieces are hidden (BackFaceCulling::automatic relies on it; a self-intersecting surface can
+  /// break that, and needs BackFaceCulling::never).
+  bool closed_outward = false;
 
   /// Where a piece lies in the parametrisation the output speaks of (UVs, triangle_patches):
   /// [u0, u0 + size] x [v0, v0 + size] of patch `patch`.

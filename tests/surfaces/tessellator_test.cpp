@@ -11,6 +11,7 @@
 #include "core/errors.h"
 #include "io/bpt.h"
 #include "meshes/topology.h"
+#include "tests/support/ray_cast.h"
 #include "tests/surfaces/patch_fixtures.h"
 
 namespace patchwork {
@@ -226,6 +227,7 @@ TEST(Tessellator, ReusedOutputGivesTheFreshResult) {
   TessellationOptions culled;
   culled.camera = Camera{Vec3(8, -6, 5), Vec3(0, 0, 1.5), Vec3::UnitZ(), 40.0, 640, 480};
   culled.pixel_tolerance = 2.0;
+  culled.back_face_culling = BackFaceCulling::always;  // the teapot is open: asked for
   TessellationOptions coarse = relative(1e-1);
   coarse.uv = UvMode::none;
   Tessellation reused;
@@ -445,6 +447,111 @@ TEST(Tessellator, WeldGapIsPartOfTheBound) {
   // Where the edges agree exactly there is nothing to add.
   const Tessellation exact = tessellate(PatchSet({left}), options);
   EXPECT_EQ(exact.weld_gap, 0.0);
+}
+
+// The cube [-1, 1]^3 as six bicubic faces with straight edges and their inner control points
+// pushed out by `bulge`, F_u x F_v pointing out: a closed, consistently oriented patch set.
+std::vector<BezierPatch3> bulged_cube(double bulge) {
+  std::vector<BezierPatch3> faces;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double side : {-1.0, 1.0}) {
+      Vec3 n = Vec3::Zero();
+      n[axis] = side;
+      // a x b = n.
+      Vec3 a = Vec3::Zero();
+      a[(axis + 1) % 3] = 1.0;
+      const Vec3 b = n.cross(a);
+      std::vector<Vec3> points;
+      for (int j = 0; j <= 3; ++j) {
+        for (int i = 0; i <= 3; ++i) {
+          const bool inner = i % 3 != 0 && j % 3 != 0;
+          points.push_back(n * (1.0 + (inner ? bulge : 0.0)) + (-1.0 + 2.0 * i / 3) * a + (-1.0 + 2.0 * j / 3) * b);
+        }
+      }
+      faces.emplace_back(3, 3, std::move(points));
+    }
+  }
+  return faces;
+}
+
+// Back-face culling must not open holes. The teapot is open: seen from above, the inside of the
+// body shows through the gap under the lid, and those patches face away from the eye. Ray cast
+// (tests/support/ray_cast.h), the culled mesh shows every pixel the whole mesh shows; culling
+// every back-facing patch (the old behaviour, now BackFaceCulling::always) loses some.
+TEST(Tessellator, BackFaceCullingOpensNoHoleInAnOpenSurface) {
+  TessellationOptions options;
+  options.camera = Camera{Vec3(0.3, -1.2, 9.0), Vec3(0, 0, 1.5), Vec3::UnitZ(), 40.0, 400, 300};
+  options.pixel_tolerance = 0.5;
+  options.back_face_culling = BackFaceCulling::never;
+  const Tessellation whole = tessellate(teapot(), options);
+  EXPECT_EQ(whole.culled_patches, 0u);
+  options.back_face_culling = BackFaceCulling::automatic;
+  const Tessellation automatic = tessellate(teapot(), options);
+  options.back_face_culling = BackFaceCulling::always;
+  const Tessellation always = tessellate(teapot(), options);
+  ASSERT_GT(always.culled_patches, 0u);
+  const std::vector<double> seen = testing::ray_cast(whole.mesh, *options.camera);
+  const std::size_t covered = static_cast<std::size_t>(std::count_if(seen.begin(), seen.end(), [](double z) { return std::isfinite(z); }));
+  ASSERT_GT(covered, seen.size() / 20);
+  EXPECT_EQ(testing::pixels_lost(seen, testing::ray_cast(automatic.mesh, *options.camera)), 0u);
+  const std::size_t lost = testing::pixels_lost(seen, testing::ray_cast(always.mesh, *options.camera));
+  EXPECT_GT(lost, covered / 200) << "the view shows back faces through the lid's gap";
+  std::cout << "teapot from above: " << covered << " pixels covered, " << lost
+            << " lost when every back-facing patch is culled\n";
+}
+
+// On a closed, outward-oriented surface seen from outside, back faces are hidden: they are
+// culled, and the culled mesh shows every pixel at the same depth as the whole mesh.
+TEST(Tessellator, BackFaceCullingOnAClosedSurfaceKeepsTheImage) {
+  const PatchSet cube(bulged_cube(0.3));
+  TessellationOptions options;
+  options.camera = Camera{Vec3(3.0, -4.0, 2.5), Vec3(0, 0, 0), Vec3::UnitZ(), 40.0, 400, 300};
+  options.back_face_culling = BackFaceCulling::never;
+  const Tessellation whole = tessellate(cube, options);
+  options.back_face_culling = BackFaceCulling::automatic;
+  const Tessellation culled = tessellate(cube, options);
+  EXPECT_EQ(culled.culled_patches, 3u);  // the three faces turned away
+  const std::vector<double> seen = testing::ray_cast(whole.mesh, *options.camera);
+  const std::vector<double> kept = testing::ray_cast(culled.mesh, *options.camera);
+  EXPECT_EQ(testing::pixels_lost(seen, kept), 0u);
+  // The same surface where both show it: the meshes differ only where an edge rate followed a
+  // culled neighbour, each within its bound of the surface; seen head-on, depth moves by less
+  // than twice the two bounds, which only rays grazing the silhouette can exceed.
+  const double depth_slack = 2.0 * (whole.error_bound + culled.error_bound);
+  std::size_t covered = 0;
+  std::size_t farther = 0;
+  for (std::size_t k = 0; k < seen.size(); ++k) {
+    if (!std::isfinite(seen[k])) continue;
+    ++covered;
+    if (std::abs(kept[k] - seen[k]) > depth_slack) ++farther;
+  }
+  EXPECT_LT(farther, covered / 500) << farther << " of " << covered << " pixels at another depth";
+  // Only the frustum culls where back faces may show: from inside the box of the control points
+  // (the eye may be inside the solid; here it is, and sees only back faces), and on the set
+  // turned inside out below.
+  const auto back_faces_culled = [&](const PatchSet& set) {
+    TessellationOptions never = options;
+    never.back_face_culling = BackFaceCulling::never;
+    return tessellate(set, options).culled_patches - tessellate(set, never).culled_patches;
+  };
+  options.camera->eye = Vec3(0.2, 0.1, 0.3);
+  options.camera->target = Vec3(1, 0, 0);
+  EXPECT_EQ(back_faces_culled(cube), 0u);
+  options.back_face_culling = BackFaceCulling::always;
+  EXPECT_GT(back_faces_culled(cube), 0u);
+  options.back_face_culling = BackFaceCulling::automatic;
+  // Turned inside out (each face's u reversed), the set is closed but oriented inward.
+  std::vector<BezierPatch3> inward;
+  for (const BezierPatch3& face : cube.patches()) {
+    std::vector<Vec3> points;
+    for (int j = 0; j <= 3; ++j) {
+      for (int i = 0; i <= 3; ++i) points.push_back(face.control_point(3 - i, j));
+    }
+    inward.emplace_back(3, 3, std::move(points));
+  }
+  options.camera = Camera{Vec3(3.0, -4.0, 2.5), Vec3(0, 0, 0), Vec3::UnitZ(), 40.0, 400, 300};
+  EXPECT_EQ(tessellate(PatchSet(inward), options).culled_patches, 0u);
+  EXPECT_EQ(back_faces_culled(cube), 3u);
 }
 
 // Random patches and random C0-joined grids of patches, at random tolerances.
