@@ -13,6 +13,7 @@
 #include "core/union_find.h"
 #include "curves/continuity.h"
 #include "curves/degree.h"
+#include "curves/subdivision.h"
 #include "surfaces/surface_normal.h"
 
 namespace patchwork {
@@ -87,6 +88,88 @@ class PointGrid {
   double cell_;
   std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
 };
+
+// Both point lists at one degree (the lower elevated), b read backwards when reversed; the
+// largest distance between corresponding points.
+double elevated_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool reversed) {
+  if (a.size() == b.size()) return max_distance(a, b, reversed);
+  const int degree = static_cast<int>(std::max(a.size(), b.size())) - 1;
+  const auto up = [degree](const std::vector<Vec3>& p) {
+    return elevate_degree(BezierCurve3(p), degree - static_cast<int>(p.size()) + 1).control_points();
+  };
+  return max_distance(up(a), up(b), reversed);
+}
+
+// The parameter t in (from, 1] of `curve` nearest to q: the best of 64 samples, then Newton
+// steps on (C(t) - q) . C'(t) = 0 kept inside the interval.
+double nearest_parameter(const BezierCurve3& curve, double from, const Vec3& q) {
+  constexpr int samples = 64;
+  double best = 1.0;
+  double best_distance = (curve.evaluate(1.0) - q).norm();
+  for (int k = 1; k < samples; ++k) {
+    const double t = from + (1.0 - from) * k / samples;
+    const double d = (curve.evaluate(t) - q).norm();
+    if (d < best_distance) best_distance = d, best = t;
+  }
+  double t = best;
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const std::vector<Vec3> d = derivatives(curve, t, 2);
+    const double f = (d[0] - q).dot(d[1]);
+    const double df = d[1].squaredNorm() + (d[0] - q).dot(d[2]);
+    if (!(df > 0.0)) break;
+    const double next = std::clamp(t - f / df, from, 1.0);
+    if (next == t) break;
+    t = next;
+  }
+  return (curve.evaluate(t) - q).norm() <= best_distance ? t : best;
+}
+
+// Edge `a` tiled end to end by other unmatched edges (a T-junction), or nothing. From the
+// long edge's start, each step takes an unmatched edge that begins there and whose far end lies
+// on the rest of the long edge at some t, and whose control points are those of the long edge's
+// piece up to t (de Casteljau, subcurve); it ends when a part reaches the long edge's end.
+std::optional<TJunction> tile_edge(std::size_t a, const std::vector<EdgeRef>& edges,
+                                   const std::vector<std::vector<Vec3>>& points, const std::vector<bool>& matched,
+                                   const PointGrid& ends, double tolerance) {
+  const BezierCurve3 curve(points[a]);
+  TJunction tiling{edges[a], {}, {}, {}, true, 0.0};
+  std::vector<std::size_t> used;
+  double from = 0.0;
+  Vec3 start = points[a].front();
+  // Parts shorter than 2^-20 of the edge are not looked for: each part advances the tiling.
+  while (from < 1.0 && tiling.parts.size() < 64) {
+    std::optional<std::size_t> found;
+    double found_t = 0.0;
+    bool found_reversed = false;
+    double found_gap = 0.0;
+    ends.near(start, [&](std::size_t b) {
+      if (found || b == a || matched[b] || std::find(used.begin(), used.end(), b) != used.end()) return;
+      const std::vector<Vec3>& pb = points[b];
+      const bool reversed = (pb.back() - start).norm() <= tolerance;
+      if (!reversed && (pb.front() - start).norm() > tolerance) return;
+      const Vec3& far = reversed ? pb.front() : pb.back();
+      const double t = nearest_parameter(curve, from, far);
+      if ((curve.evaluate(t) - far).norm() > tolerance || t - from < 0x1p-20) return;
+      const bool last = (points[a].back() - far).norm() <= tolerance;
+      const double end = last ? 1.0 : t;
+      const double gap = elevated_distance(subcurve(curve, from, end).control_points(), pb, reversed);
+      if (gap > tolerance) return;
+      found = b, found_t = end, found_reversed = reversed, found_gap = gap;
+    });
+    if (!found) return std::nullopt;
+    used.push_back(*found);
+    tiling.parts.push_back(edges[*found]);
+    tiling.breaks.push_back(found_t);
+    tiling.reversed.push_back(found_reversed);
+    tiling.gap = std::max(tiling.gap, found_gap);
+    const bool opposite = walks_forward(edges[a].edge) != (walks_forward(edges[*found].edge) != found_reversed);
+    tiling.consistently_oriented = tiling.consistently_oriented && opposite;
+    from = found_t;
+    start = curve.evaluate(from);
+  }
+  if (from < 1.0 || tiling.parts.size() < 2) return std::nullopt;
+  return tiling;
+}
 
 
 }  // namespace
@@ -214,6 +297,27 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
       }
     }
   }
+  // T-junctions among the edges left: each long edge tiled by parts (longest first, so that a
+  // part is never taken for a long edge itself).
+  std::vector<std::size_t> unmatched;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    if (!matched[k]) unmatched.push_back(k);
+  }
+  if (unmatched.size() >= 3) {
+    std::vector<double> chord(edges.size(), 0.0);
+    for (std::size_t k : unmatched) chord[k] = (points[k].back() - points[k].front()).norm();
+    std::stable_sort(unmatched.begin(), unmatched.end(), [&](std::size_t x, std::size_t y) { return chord[x] > chord[y]; });
+    std::unordered_map<std::uint64_t, std::size_t> index_of;
+    for (std::size_t k = 0; k < edges.size(); ++k) index_of[(std::uint64_t{edges[k].patch} << 2) | static_cast<std::uint64_t>(edges[k].edge)] = k;
+    for (std::size_t a : unmatched) {
+      if (matched[a]) continue;
+      std::optional<TJunction> tiling = tile_edge(a, edges, points, matched, ends, tolerance_);
+      if (!tiling) continue;
+      matched[a] = true;
+      for (const EdgeRef& part : tiling->parts) matched[index_of.at((std::uint64_t{part.patch} << 2) | static_cast<std::uint64_t>(part.edge))] = true;
+      t_junctions_.push_back(std::move(*tiling));
+    }
+  }
   for (std::size_t k = 0; k < edges.size(); ++k) {
     if (!matched[k]) open_.push_back(edges[k]);
   }
@@ -299,6 +403,18 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
       }
       groups.unite(static_cast<std::uint32_t>(index_of(s.first.patch)), static_cast<std::uint32_t>(index_of(s.second.patch)));
     }
+    // The patches of a T-junction here meet along its long edge, which runs through the point
+    // (a junction) or ends at it.
+    for (const TJunction& t : t_junctions_) {
+      std::optional<std::uint32_t> first;
+      const auto join = [&](const EdgeRef& e) {
+        if (!std::binary_search(here.begin(), here.end(), e.patch) || !touches(e)) return;
+        const auto i = static_cast<std::uint32_t>(index_of(e.patch));
+        if (first) groups.unite(*first, i); else first = i;
+      };
+      join(t.edge);
+      for (const EdgeRef& part : t.parts) join(part);
+    }
     std::unordered_map<std::size_t, std::vector<std::uint32_t>> by_root;
     for (std::uint32_t i = 0; i < here.size(); ++i) by_root[groups.find(i)].push_back(here[i]);
     if (by_root.size() < 2) continue;
@@ -320,8 +436,9 @@ std::optional<EdgeRef> PatchSet::neighbour(EdgeRef edge) const {
 PatchSetReport report(const PatchSet& set) {
   PatchSetReport r{set.patches().size(), set.shared_edges().size(), set.open_edges().size(),
                    set.collapsed_edges().size(), set.boundary_loops().size(), set.touching_points().size(),
-                   true, set.open_edges().empty(), set.shared_edges().empty() ? -1 : 1 << 30, 0,
-                   set.tolerance(), &set};
+                   set.t_junctions().size(), true, set.open_edges().empty(),
+                   set.shared_edges().empty() ? -1 : 1 << 30, 0, set.tolerance(), &set};
+  for (const TJunction& t : set.t_junctions()) r.consistently_oriented = r.consistently_oriented && t.consistently_oriented;
   for (const SharedEdge& s : set.shared_edges()) {
     r.consistently_oriented = r.consistently_oriented && s.consistently_oriented;
     r.min_ck = std::min(r.min_ck, s.continuity.ck);
@@ -339,7 +456,7 @@ std::string edge_label(EdgeRef e) { return detail::message("patch ", e.patch, " 
 std::ostream& operator<<(std::ostream& out, const PatchSetReport& r) {
   out << "patch set: " << r.patches << " patches, " << r.shared_edges << " shared edges, " << r.open_edges
       << " open edges, " << r.collapsed_edges << " collapsed edges, " << r.boundary_loops << " boundary loops, "
-      << r.touching_points << " touching points\n"
+      << r.touching_points << " touching points, " << r.t_junctions << " T-junctions\n"
       << "  closed: " << (r.closed ? "yes" : "no") << ", consistently oriented: " << (r.consistently_oriented ? "yes" : "no")
       << ", lowest C^k: " << r.min_ck << ", G^1 edges: " << r.g1_edges << " of " << r.shared_edges
       << ", tolerance: " << r.tolerance << "\n";
@@ -347,6 +464,13 @@ std::ostream& operator<<(std::ostream& out, const PatchSetReport& r) {
     out << "  shared " << edge_label(s.first) << " ~ " << edge_label(s.second) << (s.reversed ? " (reversed)" : "")
         << ": gap " << s.continuity.gap << ", C^" << s.continuity.ck << ", " << (s.continuity.g1 ? "G^1" : "not G^1")
         << " (max normal angle " << s.continuity.max_normal_angle << " rad)" << (s.consistently_oriented ? "" : ", orientation flips") << "\n";
+  }
+  for (const TJunction& t : r.set->t_junctions()) {
+    out << "  T-junction " << edge_label(t.edge) << " ~";
+    for (std::size_t k = 0; k < t.parts.size(); ++k) {
+      out << " [" << edge_label(t.parts[k]) << (t.reversed[k] ? " reversed" : "") << " to " << t.breaks[k] << "]";
+    }
+    out << ": gap " << t.gap << (t.consistently_oriented ? "" : ", orientation flips") << "\n";
   }
   for (const EdgeRef& e : r.set->collapsed_edges()) out << "  collapsed " << edge_label(e) << "\n";
   for (const BoundaryLoop& loop : r.set->boundary_loops()) {
@@ -375,6 +499,18 @@ std::string to_json(const PatchSetReport& r) {
                       {"consistently_oriented", s.consistently_oriented}, {"gap", s.continuity.gap},
                       {"ck", s.continuity.ck}, {"g1", s.continuity.g1}, {"max_normal_angle", s.continuity.max_normal_angle}});
   }
+  json t_junctions = json::array();
+  for (const TJunction& t : r.set->t_junctions()) {
+    json parts = json::array();
+    for (std::size_t k = 0; k < t.parts.size(); ++k) {
+      json part = edge_json(t.parts[k]);
+      part["to"] = t.breaks[k];
+      part["reversed"] = static_cast<bool>(t.reversed[k]);
+      parts.push_back(part);
+    }
+    t_junctions.push_back({{"edge", edge_json(t.edge)}, {"parts", parts}, {"gap", t.gap},
+                           {"consistently_oriented", t.consistently_oriented}});
+  }
   json open = json::array();
   for (const EdgeRef& e : r.set->open_edges()) open.push_back(edge_json(e));
   json collapsed = json::array();
@@ -395,12 +531,14 @@ std::string to_json(const PatchSetReport& r) {
                          {"collapsed_edges", r.collapsed_edges},
                          {"boundary_loops", r.boundary_loops},
                          {"touching_points", r.touching_points},
+                         {"t_junctions", r.t_junctions},
                          {"consistently_oriented", r.consistently_oriented},
                          {"closed", r.closed},
                          {"min_ck", r.min_ck},
                          {"g1_edges", r.g1_edges},
                          {"tolerance", r.tolerance},
                          {"shared", shared},
+                         {"junctions", t_junctions},
                          {"open", open},
                          {"collapsed", collapsed},
                          {"loops", loops},

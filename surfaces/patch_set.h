@@ -5,6 +5,8 @@
 //   - collapsed when all its control points coincide (within the tolerance): the teapot's poles;
 //   - shared when another patch has an edge with the same control points, in the same or the
 //     reverse order (the lower degree elevated first when the degrees differ);
+//   - part of a T-junction when it and other patches' edges lie end to end along a longer edge
+//     (TJunction: each is the long edge's de Casteljau piece between two parameters);
 //   - open otherwise: a boundary of the set.
 // The tolerance is relative to the diagonal of the box of all control points.
 //
@@ -57,6 +59,25 @@ struct SharedEdge {
   EdgeContinuity continuity;
 };
 
+/// A patch edge against a chain of shorter edges of other patches, end to end along it: a
+/// T-junction where two parts meet (the layout of adaptive subdivision and of hand-made sets).
+/// Part k is the piece [breaks[k-1], breaks[k]] of boundary_curve(edge) (breaks[-1] = 0,
+/// breaks[parts - 1] = 1): its control points agree within the tolerance with those of that
+/// piece (de Casteljau), so the part's edge is the long edge's piece, reparametrised linearly.
+struct TJunction {
+  EdgeRef edge;
+  /// The parts in the direction of boundary_curve(edge), at least two.
+  std::vector<EdgeRef> parts;
+  /// Where part k ends along boundary_curve(edge): 0 < breaks[0] < ... < breaks.back() = 1.
+  std::vector<double> breaks;
+  /// Part k's boundary curve runs against the long edge's.
+  std::vector<bool> reversed;
+  /// Every part walks the edge opposite to the long edge's patch.
+  bool consistently_oriented;
+  /// Largest distance between corresponding control points of a part and its piece.
+  double gap;
+};
+
 /// A closed chain of open edges, in walking order.
 struct BoundaryLoop {
   std::vector<EdgeRef> edges;
@@ -90,7 +111,10 @@ class PatchSet {
   const std::vector<SharedEdge>& shared_edges() const noexcept { return shared_; }
   /// Edges that collapse to a point.
   const std::vector<EdgeRef>& collapsed_edges() const noexcept { return collapsed_; }
-  /// Edges that no other patch shares: the boundary of the set.
+  /// Edges against chains of other patches' edges (T-junctions); neither they nor their parts
+  /// are open.
+  const std::vector<TJunction>& t_junctions() const noexcept { return t_junctions_; }
+  /// Edges that no other patch shares, whole or in parts: the boundary of the set.
   const std::vector<EdgeRef>& open_edges() const noexcept { return open_; }
   /// Open edges chained into loops.
   const std::vector<BoundaryLoop>& boundary_loops() const noexcept { return loops_; }
@@ -104,6 +128,7 @@ class PatchSet {
   double size_;
   double tolerance_;
   std::vector<SharedEdge> shared_;
+  std::vector<TJunction> t_junctions_;
   std::vector<EdgeRef> collapsed_;
   std::vector<EdgeRef> open_;
   std::vector<BoundaryLoop> loops_;
@@ -131,7 +156,8 @@ struct PatchSetReport {
   std::size_t collapsed_edges;
   std::size_t boundary_loops;
   std::size_t touching_points;
-  /// Every shared edge walked in opposite directions by its two patches.
+  std::size_t t_junctions;
+  /// Every shared edge (and T-junction part) walked in opposite directions by its patches.
   bool consistently_oriented;
   /// No open edge.
   bool closed;

@@ -1,6 +1,8 @@
 #include "surfaces/tessellation_pattern.h"
 
 #include <algorithm>
+#include <functional>
+#include <numeric>
 
 #include "core/assert.h"
 #include "core/errors.h"
@@ -45,7 +47,7 @@ void add_boundary_points(const PatternRates& rates, std::vector<PatternPoint>& p
   for (int k = 0; k < 4; ++k) {
     const int e = rates.edges[k];
     for (int step = 1; step < e; ++step) {
-      const double t = ratio(step, e);
+      const double t = edge_step_parameter(rates, k, step);
       // boundary_curve directions: v0 and v1 along increasing u, u1 and u0 along increasing v.
       const Vec2 uv = k == 0 ? Vec2(t, 0) : k == 1 ? Vec2(1, t) : k == 2 ? Vec2(t, 1) : Vec2(0, t);
       points.push_back({uv, PatternPoint::Kind::edge, static_cast<std::uint8_t>(k), step});
@@ -72,18 +74,18 @@ void add_grid_cells(int i0, int i1, int j0, int j1, const At& at, std::vector<Tr
   }
 }
 
-// Joins the outer points (positions s = k / a along the side, k = 0..a) to the inner points
-// (positions (offset + t) / inner_rate, t = 0 .. inner.size() - 1) by advancing, at each step,
-// along the sequence whose next point comes first. Both run counter-clockwise, the inner row
-// inside.
-void stitch_side(const std::vector<std::uint32_t>& outer, const std::vector<std::uint32_t>& inner, int inner_rate,
-                 int offset, std::vector<Triangle>& triangles) {
+// Joins the outer points (at positions `along` in [0, 1] counter-clockwise along the side) to the
+// inner points (positions (offset + t) / inner_rate, t = 0 .. inner.size() - 1) by advancing, at
+// each step, along the sequence whose next point comes first. Both run counter-clockwise, the
+// inner row inside.
+void stitch_side(const std::vector<std::uint32_t>& outer, const std::vector<double>& along,
+                 const std::vector<std::uint32_t>& inner, int inner_rate, int offset, std::vector<Triangle>& triangles) {
   const std::size_t a = outer.size() - 1;
   const std::size_t b = inner.size() - 1;
   std::size_t i = 0;
   std::size_t j = 0;
   while (i < a || j < b) {
-    const double next_outer = ratio(static_cast<int>(i + 1), static_cast<int>(a));
+    const double next_outer = along[i + 1];
     const double next_inner = ratio(offset + static_cast<int>(j + 1), inner_rate);
     if (j == b || (i < a && next_outer <= next_inner)) {
       triangles.push_back({outer[i], outer[i + 1], inner[j]});
@@ -97,8 +99,24 @@ void stitch_side(const std::vector<std::uint32_t>& outer, const std::vector<std:
 
 }  // namespace
 
+double edge_step_parameter(const PatternRates& rates, int edge, int step) {
+  const EdgeSegments* pieces = rates.segments[static_cast<std::size_t>(edge)];
+  if (pieces == nullptr) return ratio(step, rates.edges[static_cast<std::size_t>(edge)]);
+  for (std::size_t s = 0; s < pieces->rates.size(); ++s) {
+    const int rate = pieces->rates[s];
+    if (step <= rate || s + 1 == pieces->rates.size()) {
+      // The piece's own ends exactly, so that a junction is where its parts meet.
+      if (step == rate) return pieces->at[s + 1];
+      return pieces->at[s] + (pieces->at[s + 1] - pieces->at[s]) * ratio(step, rate);
+    }
+    step -= rate;
+  }
+  return 1.0;
+}
+
 InnerGrid inner_grid(const PatternRates& rates) {
-  const bool grid = rates.edges[0] == rates.inner_u && rates.edges[2] == rates.inner_u &&
+  const bool evenly = std::all_of(rates.segments.begin(), rates.segments.end(), [](const EdgeSegments* p) { return p == nullptr; });
+  const bool grid = evenly && rates.edges[0] == rates.inner_u && rates.edges[2] == rates.inner_u &&
                     rates.edges[1] == rates.inner_v && rates.edges[3] == rates.inner_v;
   if (grid) return {rates.inner_u, rates.inner_v, true};
   return {std::max(rates.inner_u, 2), std::max(rates.inner_v, 2), false};
@@ -120,6 +138,18 @@ void make_pattern_boundary(const PatternRates& rates, TessellationPattern& patte
     throw InvalidInput(detail::message("make_pattern: rates (", rates.inner_u, ", ", rates.inner_v, "; ",
                                        rates.edges[0], ", ", rates.edges[1], ", ", rates.edges[2], ", ", rates.edges[3],
                                        ") must all be at least 1"));
+  }
+  for (std::size_t k = 0; k < 4; ++k) {
+    const EdgeSegments* pieces = rates.segments[k];
+    if (pieces == nullptr) continue;
+    const bool valid = !pieces->rates.empty() && pieces->at.size() == pieces->rates.size() + 1 &&
+                       pieces->at.front() == 0.0 && pieces->at.back() == 1.0 &&
+                       std::adjacent_find(pieces->at.begin(), pieces->at.end(), std::greater_equal<double>()) == pieces->at.end() &&
+                       std::all_of(pieces->rates.begin(), pieces->rates.end(), [](int r) { return r >= 1; }) &&
+                       std::accumulate(pieces->rates.begin(), pieces->rates.end(), 0) == rates.edges[k];
+    if (!valid) {
+      throw InvalidInput(detail::message("make_pattern: the pieces of edge ", k, " are not increasing from 0 to 1 with rates >= 1 adding up to ", rates.edges[k]));
+    }
   }
   const InnerGrid inner = inner_grid(rates);
   pattern.points.clear();
@@ -153,7 +183,9 @@ void make_pattern_boundary(const PatternRates& rates, TessellationPattern& patte
   // A side keeps its ring of grid cells where its edge rate equals the inner rate along it; the
   // other sides are stitched. The grid cells are [i0, i1) x [j0, j1); those touching the
   // boundary are listed here (the rest are the inner cells).
-  const auto matches = [&](int side) { return rates.edges[side] == (side % 2 == 0 ? nu : nv); };
+  const auto matches = [&](int side) {
+    return rates.segments[static_cast<std::size_t>(side)] == nullptr && rates.edges[side] == (side % 2 == 0 ? nu : nv);
+  };
   const int i0 = matches(3) ? 0 : 1;
   const int i1 = matches(1) ? nu : nu - 1;
   const int j0 = matches(0) ? 0 : 1;
@@ -177,9 +209,14 @@ void make_pattern_boundary(const PatternRates& rates, TessellationPattern& patte
     if (matches(side)) continue;
     const int e = rates.edges[side];
     std::vector<std::uint32_t> outer{index.corner(side)};
+    std::vector<double> along{0.0};
     // Counter-clockwise: v0 and u1 run with their boundary_curve, v1 and u0 against it.
-    for (int k = 1; k < e; ++k) outer.push_back(index.edge(side, side < 2 ? k : e - k));
+    for (int k = 1; k < e; ++k) {
+      outer.push_back(index.edge(side, side < 2 ? k : e - k));
+      along.push_back(side < 2 ? edge_step_parameter(rates, side, k) : 1.0 - edge_step_parameter(rates, side, e - k));
+    }
     outer.push_back(index.corner((side + 1) % 4));
+    along.push_back(1.0);
     std::vector<std::uint32_t> inner_row;
     int offset = 0;  // the first inner point's step along the side
     switch (side) {
@@ -200,7 +237,7 @@ void make_pattern_boundary(const PatternRates& rates, TessellationPattern& patte
         offset = nv - j1;
         break;
     }
-    stitch_side(outer, inner_row, side % 2 == 0 ? nu : nv, offset, pattern.triangles);
+    stitch_side(outer, along, inner_row, side % 2 == 0 ? nu : nv, offset, pattern.triangles);
   }
 }
 

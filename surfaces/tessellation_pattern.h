@@ -12,8 +12,9 @@
 //   c0 ------- edge v0 (rate e0) ------- c1
 //
 // Points come boundary first: the four corners, then each edge's inner points (steps 1 .. e-1 in
-// the direction of boundary_curve: u increasing on v0 and v1, v increasing on u0 and u1), then
-// the interior. So two patches sharing an edge with one rate see the same boundary points, and a
+// the direction of boundary_curve: u increasing on v0 and v1, v increasing on u0 and u1; evenly
+// spaced, or evenly within each piece of an edge made of pieces, EdgeSegments), then the
+// interior. So two patches sharing an edge with one rate see the same boundary points, and a
 // tessellator can give them one set of vertex ids.
 //
 // When every edge rate equals the inner rate along it, the pattern is the N_u x N_v grid, each
@@ -32,12 +33,28 @@
 
 namespace patchwork {
 
+/// The points of an edge made of pieces (a T-junction's long edge): piece s spans [at[s],
+/// at[s+1]] of the edge's boundary_curve parameter (at.front() = 0, at.back() = 1) in rates[s]
+/// even steps, so the edge's points are those of the pieces, end to end.
+struct EdgeSegments {
+  std::vector<double> at;
+  std::vector<int> rates;
+  friend bool operator==(const EdgeSegments&, const EdgeSegments&) = default;
+};
+
 /// The rates of a pattern: segments of the inner grid and of each edge (v0, u1, v1, u0).
 struct PatternRates {
   int inner_u;
   int inner_v;
   std::array<int, 4> edges;
+  /// Per edge, null for evenly spaced points, else its pieces (not owned; edges[k] is then the
+  /// sum of their rates). A pattern with pieces is never the plain grid.
+  std::array<const EdgeSegments*, 4> segments{};
 };
+
+/// The boundary_curve parameter of step `step` (0 .. rates.edges[edge]) of an edge: step / rate,
+/// or along its pieces.
+double edge_step_parameter(const PatternRates& rates, int edge, int step);
 
 /// Where a pattern point lies.
 struct PatternPoint {

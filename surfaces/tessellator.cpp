@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numeric>
 
 #include "core/assert.h"
 #include "core/errors.h"
@@ -37,12 +38,39 @@ constexpr std::array<int, 4> edge_end = {1, 2, 2, 3};
 // Segments along edge k for inner rates (nu, nv): v0 and v1 run along u.
 int along(int edge, int nu, int nv) { return edge % 2 == 0 ? nu : nv; }
 
+// The segments of a T-junction's piece of length `length` (of its long edge) at inner rate n:
+// as many as the long edge's patch has along it there, at least one.
+int piece_rate(int n, double length) { return std::max(1, static_cast<int>(std::ceil(n * length - 1e-9))); }
+
+// Rates with copies of their edges' piece rates: what a pattern is known by (PatternRates only
+// points at the pieces, which change as the rates grow).
+struct RatesKey {
+  PatternRates rates{0, 0, {0, 0, 0, 0}};
+  std::array<std::vector<int>, 4> pieces;
+
+  bool operator==(const PatternRates& r) const {
+    if (rates.inner_u != r.inner_u || rates.inner_v != r.inner_v || rates.edges != r.edges) return false;
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (r.segments[k] == nullptr ? !pieces[k].empty() : pieces[k] != r.segments[k]->rates) return false;
+    }
+    return true;
+  }
+  void assign(const PatternRates& r) {
+    rates = r;
+    rates.segments = {};
+    for (std::size_t k = 0; k < 4; ++k) {
+      pieces[k].clear();
+      if (r.segments[k] != nullptr) pieces[k] = r.segments[k]->rates;
+    }
+  }
+};
+
 // What one patch needs before evaluation.
 struct PatchPlan {
   bool culled = false;
   // The rates of the stitched pattern whose bound was last computed, and that bound (each round
   // of raise_rates_to_bounds and the evaluation need it; most patterns do not change).
-  PatternRates checked_rates{0, 0, {0, 0, 0, 0}};
+  RatesKey checked_rates;
   double checked_bound = 0.0;
   double tolerance = 0.0;
   SecondDerivativeBounds bounds{0, 0, 0};
@@ -74,10 +102,24 @@ struct EdgeClass {
   std::uint32_t first_id = no_id;  // welded id of step 1
 };
 
-// One patch edge's view of its class.
+// One patch edge's view of its class, or of its composite (a T-junction's long edge).
 struct EdgeSlot {
   std::uint32_t edge_class = no_id;
   bool reversed = false;  // runs against the owner's direction
+  std::uint32_t composite = no_id;
+};
+
+// A T-junction's long edge: its points are those of its parts' classes end to end, and of the
+// junctions between them. Junction b (between pieces b and b+1) is welding slot
+// 4 * count + first_junction + b; it unites the two parts' corners there.
+struct CompositeEdge {
+  EdgeRef edge;
+  EdgeSegments segments;  // at: 0, the breaks; rates: the classes' rates
+  std::vector<std::uint32_t> classes;
+  std::vector<bool> reversed;  // class b runs against the long edge
+  std::vector<EdgeRef> parts;
+  std::vector<bool> joined;    // part b is tessellated and owns class b
+  std::uint32_t first_junction = 0;
 };
 
 }  // namespace
@@ -433,12 +475,40 @@ class Tessellator {
       slots_[a.patch][static_cast<int>(a.edge)] = {c, false};
       slots_[b.patch][static_cast<int>(b.edge)] = {c, shared.reversed};
     }
+    // A T-junction's parts keep their own classes; the long edge sees them end to end. A culled
+    // part leaves its piece to a class of the long edge's patch.
+    for (const TJunction& t : pieces_.t_junctions) {
+      EdgeSlot& slot = slots_[t.edge.patch][static_cast<int>(t.edge.edge)];
+      if (plans_[t.edge.patch].culled || slot.edge_class != no_id || slot.composite != no_id) continue;
+      CompositeEdge composite;
+      composite.edge = t.edge;
+      composite.segments.at.push_back(0.0);
+      for (std::size_t b = 0; b < t.parts.size(); ++b) {
+        const EdgeRef part = t.parts[b];
+        EdgeSlot& part_slot = slots_[part.patch][static_cast<int>(part.edge)];
+        const bool joined = !plans_[part.patch].culled && part_slot.edge_class == no_id && part_slot.composite == no_id;
+        const std::uint32_t c = add_class(joined ? part.patch : t.edge.patch, false);
+        if (joined) part_slot = {c, false};
+        composite.classes.push_back(c);
+        composite.reversed.push_back(joined && t.reversed[b]);
+        composite.parts.push_back(part);
+        composite.joined.push_back(joined);
+        composite.segments.at.push_back(b + 1 == t.parts.size() ? 1.0 : t.breaks[b]);
+        composite.segments.rates.push_back(1);
+      }
+      composite.first_junction = junctions_;
+      junctions_ += static_cast<std::uint32_t>(t.parts.size() - 1);
+      slot.composite = static_cast<std::uint32_t>(composites_.size());
+      composites_.push_back(std::move(composite));
+    }
     std::vector<std::array<bool, 4>> collapsed(count_, {false, false, false, false});
     for (const EdgeRef& e : pieces_.collapsed) collapsed[e.patch][static_cast<int>(e.edge)] = true;
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       for (int k = 0; k < 4; ++k) {
-        if (slots_[p][k].edge_class == no_id) slots_[p][k] = {add_class(p, collapsed[p][k]), false};
+        if (slots_[p][k].edge_class == no_id && slots_[p][k].composite == no_id) {
+          slots_[p][k] = {add_class(p, collapsed[p][k]), false};
+        }
       }
     }
     update_edge_rates();
@@ -446,20 +516,43 @@ class Tessellator {
 
   // A class's rate is the largest rate any of its patches needs along it; a collapsed edge
   // follows its patch's inner rate, so its triangles fan evenly into the pole.
+  // A composite edge asks each of its pieces for the long edge's rate over the piece's length.
   void update_edge_rates() {
     for (EdgeClass& c : classes_) c.rate = 1;
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
       for (int k = 0; k < 4; ++k) {
-        EdgeClass& c = classes_[slots_[p][k].edge_class];
-        c.rate = std::max(c.rate, along(k, plans_[p].nu, plans_[p].nv));
+        const int n = along(k, plans_[p].nu, plans_[p].nv);
+        const EdgeSlot& slot = slots_[p][k];
+        if (slot.composite == no_id) {
+          EdgeClass& c = classes_[slot.edge_class];
+          c.rate = std::max(c.rate, n);
+          continue;
+        }
+        const CompositeEdge& composite = composites_[slot.composite];
+        for (std::size_t b = 0; b < composite.classes.size(); ++b) {
+          EdgeClass& c = classes_[composite.classes[b]];
+          c.rate = std::max(c.rate, piece_rate(n, composite.segments.at[b + 1] - composite.segments.at[b]));
+        }
       }
+    }
+    for (CompositeEdge& composite : composites_) {
+      for (std::size_t b = 0; b < composite.classes.size(); ++b) composite.segments.rates[b] = classes_[composite.classes[b]].rate;
     }
   }
 
   PatternRates rates(std::uint32_t p) const {
-    PatternRates r{plans_[p].nu, plans_[p].nv, {}};
-    for (int k = 0; k < 4; ++k) r.edges[k] = classes_[slots_[p][k].edge_class].rate;
+    PatternRates r{plans_[p].nu, plans_[p].nv, {}, {}};
+    for (int k = 0; k < 4; ++k) {
+      const EdgeSlot& slot = slots_[p][k];
+      if (slot.composite == no_id) {
+        r.edges[k] = classes_[slot.edge_class].rate;
+        continue;
+      }
+      const EdgeSegments& pieces = composites_[slot.composite].segments;
+      r.segments[k] = &pieces;
+      r.edges[k] = std::accumulate(pieces.rates.begin(), pieces.rates.end(), 0);
+    }
     return r;
   }
 
@@ -490,7 +583,20 @@ class Tessellator {
           PatternRates r = rates(p);
           r.inner_u = c.nu;
           r.inner_v = c.nv;
-          for (int k = 0; k < 4; ++k) r.edges[k] = std::max(r.edges[k], along(k, c.nu, c.nv));
+          std::array<EdgeSegments, 4> raised;
+          for (std::size_t k = 0; k < 4; ++k) {
+            const int n = along(static_cast<int>(k), c.nu, c.nv);
+            if (r.segments[k] == nullptr) {
+              r.edges[k] = std::max(r.edges[k], n);
+              continue;
+            }
+            raised[k] = *r.segments[k];
+            for (std::size_t b = 0; b < raised[k].rates.size(); ++b) {
+              raised[k].rates[b] = std::max(raised[k].rates[b], piece_rate(n, raised[k].at[b + 1] - raised[k].at[b]));
+            }
+            r.segments[k] = &raised[k];
+            r.edges[k] = std::accumulate(raised[k].rates.begin(), raised[k].rates.end(), 0);
+          }
           c.bound = pattern_bound_of(p, r);
         }
         const auto meets = [&](const Candidate& c) { return c.bound <= plan.tolerance; };
@@ -509,16 +615,12 @@ class Tessellator {
     throw NumericalError("tessellate: the stitched rates did not settle within 64 rounds");
   }
 
-  static bool same_rates(const PatternRates& a, const PatternRates& b) {
-    return a.inner_u == b.inner_u && a.inner_v == b.inner_v && a.edges == b.edges;
-  }
-
   // The bound of patch p's stitched pattern at its current rates (computed once per rates).
   double stitched_bound(std::uint32_t p) {
     PatchPlan& plan = plans_[p];
     const PatternRates r = rates(p);
-    if (!same_rates(r, plan.checked_rates)) {
-      plan.checked_rates = r;
+    if (!(plan.checked_rates == r)) {
+      plan.checked_rates.assign(r);
       plan.checked_bound = pattern_bound_of(p, r);
     }
     return plan.checked_bound;
@@ -554,7 +656,8 @@ class Tessellator {
   // Corners are one point where shared or collapsed edges join them; then every class's inner
   // points get a block of ids, then each patch's interior.
   void number_welded_points() {
-    UnionFind corners(4 * count_);
+    const auto patch_slots = static_cast<std::uint32_t>(4 * count_);
+    UnionFind corners(patch_slots + junctions_);
     const auto slot = [](std::uint32_t p, int c) { return static_cast<std::uint32_t>(4 * p + c); };
     for (const PieceJoin& shared : pieces_.shared) {
       const EdgeRef a = shared.first;
@@ -570,8 +673,24 @@ class Tessellator {
       const int k = static_cast<int>(e.edge);
       corners.unite(slot(e.patch, edge_start[k]), slot(e.patch, edge_end[k]));
     }
-    corner_ids_.assign(4 * count_, no_id);
-    corner_owner_.assign(4 * count_, false);
+    // A T-junction's parts meet the long edge's corners at its ends and each other at the
+    // junctions between them.
+    for (const CompositeEdge& composite : composites_) {
+      const EdgeRef e = composite.edge;
+      const int k = static_cast<int>(e.edge);
+      const std::size_t last = composite.parts.size() - 1;
+      for (std::size_t b = 0; b <= last; ++b) {
+        if (!composite.joined[b]) continue;
+        const EdgeRef part = composite.parts[b];
+        const int kp = static_cast<int>(part.edge);
+        const int from = composite.reversed[b] ? edge_end[kp] : edge_start[kp];
+        const int to = composite.reversed[b] ? edge_start[kp] : edge_end[kp];
+        corners.unite(slot(part.patch, from), b == 0 ? slot(e.patch, edge_start[k]) : patch_slots + composite.first_junction + static_cast<std::uint32_t>(b - 1));
+        corners.unite(slot(part.patch, to), b == last ? slot(e.patch, edge_end[k]) : patch_slots + composite.first_junction + static_cast<std::uint32_t>(b));
+      }
+    }
+    corner_ids_.assign(patch_slots + junctions_, no_id);
+    corner_owner_.assign(patch_slots + junctions_, false);
     std::uint32_t next = 0;
     for (std::uint32_t p = 0; p < count_; ++p) {
       if (plans_[p].culled) continue;
@@ -581,6 +700,14 @@ class Tessellator {
         corner_ids_[slot(p, c)] = corner_ids_[root];
         corner_owner_[slot(p, c)] = root == slot(p, c);
       }
+    }
+    // A junction's point is the long edge's own, evaluated by its patch, unless a part's corner
+    // is the root of its class.
+    for (std::uint32_t j = patch_slots; j < patch_slots + junctions_; ++j) {
+      const std::uint32_t root = corners.find(j);
+      if (corner_ids_[root] == no_id) corner_ids_[root] = next++;
+      corner_ids_[j] = corner_ids_[root];
+      corner_owner_[j] = root == j;
     }
     for (EdgeClass& c : classes_) {
       if (c.collapsed) continue;
@@ -619,6 +746,24 @@ class Tessellator {
       }
       PATCHWORK_ASSERT(point.kind == PatternPoint::Kind::edge, "a boundary pattern lists boundary points only");
       const EdgeSlot& s = slots_[p][point.index];
+      if (s.composite != no_id) {
+        // Step `step` of the long edge: inside piece b, or the junction at its end.
+        const CompositeEdge& composite = composites_[s.composite];
+        int step = point.step;
+        std::size_t b = 0;
+        while (step > composite.segments.rates[b]) step -= composite.segments.rates[b++];
+        if (step == composite.segments.rates[b]) {
+          const std::size_t j = 4 * count_ + composite.first_junction + b;
+          out.welded[k] = corner_ids_[j];
+          out.owner[k] = corner_owner_[j];
+        } else {
+          const EdgeClass& c = classes_[composite.classes[b]];
+          const int local = composite.reversed[b] ? c.rate - step : step;
+          out.welded[k] = c.first_id + static_cast<std::uint32_t>(local - 1);
+          out.owner[k] = c.owner == p;
+        }
+        continue;
+      }
       const EdgeClass& c = classes_[s.edge_class];
       if (c.collapsed) {
         out.welded[k] = corner_ids_[4 * p + edge_start[point.index]];
@@ -661,7 +806,7 @@ class Tessellator {
     // map onto a mesh edge, which must be as close to the surface).
     PatchPlan& plan = plans_[p];
     out.bound = pattern.grid                        ? plan.cell_bound(out.inner.u, out.inner.v)
-                : same_rates(r, plan.checked_rates) ? plan.checked_bound
+                : plan.checked_rates == r           ? plan.checked_bound
                                                     : pattern_bound_of(p, r);
   }
 
@@ -679,7 +824,9 @@ class Tessellator {
     for (int k = 0; k < 4; ++k) {
       const int e = r.edges[k];
       const bool along_u = k % 2 == 0;
-      const std::vector<double> ts = along_u ? ramp(0, e, e) : ramp(1, e - 1, e);
+      // The pattern's parameters: even steps, or even within each piece of a composite edge.
+      std::vector<double> ts;
+      for (int step = along_u ? 0 : 1; step <= (along_u ? e : e - 1); ++step) ts.push_back(edge_step_parameter(r, k, step));
       if (ts.empty()) continue;
       points.resize(ts.size());
       normals.resize(ts.size());
@@ -1150,6 +1297,8 @@ class Tessellator {
   std::size_t count_;
   std::vector<PatchPlan> plans_;
   std::vector<std::array<EdgeSlot, 4>> slots_;
+  std::vector<CompositeEdge> composites_;
+  std::uint32_t junctions_ = 0;
   std::vector<EdgeClass> classes_;
   std::vector<std::uint32_t> corner_ids_;
   std::vector<bool> corner_owner_;
@@ -1221,6 +1370,7 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     for (const SharedEdge& shared : set.shared_edges())
       pieces.shared.push_back({shared.first, shared.second, shared.reversed});
     pieces.collapsed = set.collapsed_edges();
+    pieces.t_junctions = set.t_junctions();
     pieces.closed_outward = encloses_outward(set);
     for (std::size_t p = 0; p < patches.size(); ++p) pieces.bounds.push_back(split_bounds(cells[p], 1, 0, 0));
     pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
@@ -1321,6 +1471,10 @@ SurfacePieces surface_pieces(const PatchSet& set, bool tight_diagonal) {
 
 SurfacePieces split_surface_pieces(const PatchSet& set, int k, bool tight_diagonal) {
   if (k != 2 && k != 4) throw InvalidInput(detail::message("split_surface_pieces: k = ", k, " is not 2 or 4"));
+  if (!set.t_junctions().empty()) {
+    throw InvalidInput(detail::message("split_surface_pieces: the set has ", set.t_junctions().size(),
+                                       " T-junctions, which split pieces do not join"));
+  }
   const auto cells = cell_bounds(set);
   return pieces_of(set, cells, k, tight_or_control_diagonal(set, tight_diagonal));
 }
@@ -1344,7 +1498,8 @@ void tessellate(const PatchSet& set, const TessellationOptions& options, Tessell
                                        : 0.0;
   int best_k = 1;
   SplitEstimate best;
-  if (options.split_patches && modes == 1 && std::isfinite(eps) && eps > 0.0) {
+  // Split pieces do not join T-junctions: such sets are tessellated whole.
+  if (options.split_patches && modes == 1 && std::isfinite(eps) && eps > 0.0 && set.t_junctions().empty()) {
     try {
       best = estimated_split(cells, 1, eps);
       for (int k : {2, 4}) {

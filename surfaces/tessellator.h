@@ -183,6 +183,9 @@ struct SurfacePieces {
   std::vector<PieceJoin> shared;
   /// Edges that are one point.
   std::vector<EdgeRef> collapsed;
+  /// Edges against chains of other pieces' edges (PatchSet's T-junctions): the long edge gets
+  /// its parts' points end to end, so the mesh is welded across the junction by index.
+  std::vector<TJunction> t_junctions;
   /// Bounds on the second derivatives of each piece over [0,1]^2 (the guarantee rests on them).
   std::vector<SecondDerivativeBounds> bounds;
   /// Diagonal of a box holding the surface (relative tolerances are fractions of it; the camera

@@ -298,6 +298,29 @@ TEST(LimitSurface, AdaptiveRefinementIsolatesOnlyTheExtraordinaryVertices) {
 // End caps approximate the limit near extraordinary vertices: deeper isolation moves the surface
 // less and less (about 2.4x per level at the cube's valence-3 corners); a regular torus has no
 // end cap and does not move at all.
+// The adaptive patches of the cube meet at T-junctions (a regular patch of depth d beside two
+// of depth d + 1): as a PatchSet every such edge is found tiled by its neighbours', so the set is
+// closed and consistently oriented, and its tessellation is one welded sphere (chi = 2).
+TEST(LimitSurface, AdaptivePatchesJoinAtTJunctionsIntoAClosedPatchSet) {
+  const PatchSet set = to_patch_set(LimitSurface(cage_of(cube()), 3));
+  const PatchSetReport r = report(set);
+  EXPECT_GT(r.t_junctions, 0u);
+  EXPECT_TRUE(r.closed) << r.open_edges << " open edges";
+  EXPECT_TRUE(r.consistently_oriented);
+  EXPECT_EQ(r.touching_points, 0u);
+  TessellationOptions options;
+  options.relative_tolerance = 1e-3;
+  const Tessellation result = tessellate(set, options);
+  const TopologyReport topology = analyze(welded_faces(result.mesh));
+  EXPECT_EQ(topology.components, 1);
+  EXPECT_EQ(topology.boundary_loops, 0);
+  EXPECT_EQ(topology.euler, 2);
+  EXPECT_TRUE(topology.manifold);
+  EXPECT_LE(result.measured_error, result.error_bound);
+  std::cout << r.patches << " patches, " << r.t_junctions << " T-junctions, " << result.mesh.triangle_count()
+            << " triangles, weld gap " << result.weld_gap << "\n";
+}
+
 TEST(LimitSurface, EndCapsConvergeWithTheIsolationLevel) {
   const SubdivisionCage cage = cage_of(cube());
   double previous = 1.0;

@@ -80,4 +80,37 @@ inline double net_scale(const BezierPatch3& patch) {
   return scale;
 }
 
+/// A curved bicubic patch over [0,1]^2 (a wavy height field), for cutting into pieces.
+inline BezierPatch3 wavy_bicubic() {
+  std::vector<Vec3> points;
+  for (int j = 0; j <= 3; ++j) {
+    for (int i = 0; i <= 3; ++i) points.emplace_back(i / 3.0, j / 3.0, 0.3 * std::sin(1.7 * i + 0.9 * j) - 0.1 * i * j / 9.0);
+  }
+  return BezierPatch3(3, 3, std::move(points));
+}
+
+/// The same surface with its parameter square turned by 180 degrees ((u, v) -> (1 - u, 1 - v)):
+/// the orientation stays, every edge is another and runs the other way.
+inline BezierPatch3 turned_half(const BezierPatch3& patch) {
+  std::vector<Vec3> points;
+  for (int j = patch.degree_v(); j >= 0; --j) {
+    for (int i = patch.degree_u(); i >= 0; --i) points.push_back(patch.control_point(i, j));
+  }
+  return BezierPatch3(patch.degree_u(), patch.degree_v(), std::move(points));
+}
+
+/// Pieces of `surface` with T-junctions: the bottom half [0,1] x [0,1/2] whole, the top half cut
+/// at u = cuts[0] < cuts[1] < ... into pieces [c_k, c_{k+1}] x [1/2, 1]; the bottom's v1 edge meets
+/// the pieces' v0 edges.
+inline std::vector<BezierPatch3> t_junction_pieces(const BezierPatch3& surface, const std::vector<double>& cuts) {
+  std::vector<BezierPatch3> patches = {subpatch(surface, 0.0, 1.0, 0.0, 0.5)};
+  double from = 0.0;
+  for (std::size_t k = 0; k <= cuts.size(); ++k) {
+    const double to = k < cuts.size() ? cuts[k] : 1.0;
+    patches.push_back(subpatch(surface, from, to, 0.5, 1.0));
+    from = to;
+  }
+  return patches;
+}
+
 }  // namespace patchwork::testing

@@ -45,6 +45,64 @@ BezierPatch3 reversed_u(const BezierPatch3& patch) {
   return BezierPatch3(patch.degree_u(), patch.degree_v(), points);
 }
 
+// The bottom half of a curved patch against its top half cut at u = 0.3 (subpatch, so the
+// pieces' edges are the long edge's de Casteljau pieces up to rounding): one T-junction, the
+// long edge and its two parts no longer open, one boundary loop around the whole.
+TEST(PatchSet, TJunctionIsFound) {
+  const PatchSet set(testing::t_junction_pieces(testing::wavy_bicubic(), {0.3}));
+  ASSERT_EQ(set.t_junctions().size(), 1u);
+  const TJunction& t = set.t_junctions()[0];
+  EXPECT_EQ(t.edge, (EdgeRef{0, PatchEdge::v1}));
+  EXPECT_EQ(t.parts, (std::vector<EdgeRef>{{1, PatchEdge::v0}, {2, PatchEdge::v0}}));
+  ASSERT_EQ(t.breaks.size(), 2u);
+  EXPECT_NEAR(t.breaks[0], 0.3, 1e-12);
+  EXPECT_EQ(t.breaks[1], 1.0);
+  EXPECT_EQ(t.reversed, (std::vector<bool>{false, false}));
+  EXPECT_TRUE(t.consistently_oriented);
+  EXPECT_LT(t.gap, 1e-14);
+  EXPECT_EQ(set.shared_edges().size(), 1u);  // between the two top pieces
+  EXPECT_EQ(set.open_edges().size(), 7u);
+  ASSERT_EQ(set.boundary_loops().size(), 1u);
+  EXPECT_TRUE(set.boundary_loops()[0].closed);
+  EXPECT_EQ(set.boundary_loops()[0].edges.size(), 7u);
+  EXPECT_TRUE(set.touching_points().empty());
+  const PatchSetReport r = report(set);
+  EXPECT_EQ(r.t_junctions, 1u);
+  EXPECT_TRUE(r.consistently_oriented);
+  const nlohmann::json json = nlohmann::json::parse(to_json(r));
+  EXPECT_EQ(json["t_junctions"], 1);
+  EXPECT_EQ(json["junctions"][0]["parts"][1]["edge"], "v0");
+}
+
+// Three parts, one of them turned by 180 degrees (it meets the long edge with its v1 edge,
+// running the other way) and one of higher degree along the edge; and the orientation flip of a
+// part mirrored in u is reported.
+TEST(PatchSet, TJunctionWithReversedAndElevatedParts) {
+  std::vector<BezierPatch3> patches = testing::t_junction_pieces(testing::wavy_bicubic(), {0.25, 0.6});
+  patches[2] = testing::turned_half(patches[2]);
+  patches[3] = elevate_degree(patches[3], 2, 0);
+  const PatchSet set(patches);
+  ASSERT_EQ(set.t_junctions().size(), 1u);
+  const TJunction& t = set.t_junctions()[0];
+  EXPECT_EQ(t.parts, (std::vector<EdgeRef>{{1, PatchEdge::v0}, {2, PatchEdge::v1}, {3, PatchEdge::v0}}));
+  EXPECT_EQ(t.reversed, (std::vector<bool>{false, true, false}));
+  EXPECT_NEAR(t.breaks[0], 0.25, 1e-12);
+  EXPECT_NEAR(t.breaks[1], 0.6, 1e-12);
+  EXPECT_TRUE(t.consistently_oriented);
+  EXPECT_EQ(set.open_edges().size(), 8u);  // bottom v0, u0, u1; three tops; two outer sides
+  patches[1] = reversed_u(patches[1]);
+  const PatchSet flipped(patches);
+  ASSERT_EQ(flipped.t_junctions().size(), 1u);
+  EXPECT_FALSE(flipped.t_junctions()[0].consistently_oriented);
+  EXPECT_FALSE(report(flipped).consistently_oriented);
+  // A piece that does not follow the long edge (moved off it by 1e-3) is no part: no junction.
+  std::vector<BezierPatch3> apart = testing::t_junction_pieces(testing::wavy_bicubic(), {0.3});
+  std::vector<Vec3> points = apart[1].control_points();
+  points[1].z() += 1e-3;
+  apart[1] = BezierPatch3(3, 3, points);
+  EXPECT_TRUE(PatchSet(apart).t_junctions().empty());
+}
+
 TEST(PatchSet, GridOfSquares) {
   const PatchSet set(square_grid(2, 3));
   // Interior edges of a 2 x 3 grid: 2 * 2 vertical + 1 * 3 horizontal = 7; boundary 2 * (2 + 3) = 10.

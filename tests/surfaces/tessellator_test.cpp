@@ -554,6 +554,32 @@ TEST(Tessellator, BackFaceCullingOnAClosedSurfaceKeepsTheImage) {
   EXPECT_EQ(back_faces_culled(cube), 3u);
 }
 
+// T-junctions (a long edge against two or three shorter edges, parts reversed and of higher
+// degree) are welded by index: the long edge takes its parts' points end to end, so the mesh is
+// one disk with one boundary loop (three components before). At a coarse tolerance the long
+// edge's patch needs fewer points than its parts, at a fine one more: both directions hold.
+TEST(Tessellator, TJunctionsAreWeldedWatertight) {
+  std::vector<BezierPatch3> three = testing::t_junction_pieces(testing::wavy_bicubic(), {0.25, 0.6});
+  three[2] = testing::turned_half(three[2]);
+  three[3] = elevate_degree(three[3], 2, 0);
+  for (const std::vector<BezierPatch3>& patches :
+       {testing::t_junction_pieces(testing::wavy_bicubic(), {0.3}), three}) {
+    const PatchSet set(patches);
+    ASSERT_EQ(set.t_junctions().size(), 1u);
+    for (const double tolerance : {3e-2, 1e-3, 1e-4}) {
+      TessellationOptions options;
+      options.tolerance = tolerance;
+      const Tessellation result = tessellate(set, options);
+      expect_render_ready(set, result, tolerance);
+      const TopologyReport report = analyze(welded_faces(result.mesh));
+      EXPECT_EQ(report.components, 1) << "tolerance " << tolerance;
+      EXPECT_EQ(report.boundary_loops, 1);
+      EXPECT_EQ(report.euler, 1);
+      EXPECT_LT(result.weld_gap, 1e-14);
+    }
+  }
+}
+
 // Random patches and random C0-joined grids of patches, at random tolerances.
 RC_GTEST_PROP(Tessellator, RandomPatchSetsAreCrackFreeWithinTolerance, ()) {
   const int degree = *rc::gen::inRange(1, 6);
