@@ -578,6 +578,18 @@ TEST(Tessellator, TJunctionsAreWeldedWatertight) {
       EXPECT_LT(result.weld_gap, 1e-14);
     }
   }
+  // A part outside the view is culled; the long edge keeps its piece, and the rest stays welded.
+  const PatchSet set(testing::t_junction_pieces(testing::wavy_bicubic(), {0.3}));
+  TessellationOptions view;
+  view.camera = Camera{Vec3(0.8, 0.4, 1.2), Vec3(0.8, 0.4, 0.0), Vec3::UnitY(), 30.0, 400, 300};
+  const Tessellation seen = tessellate(set, view);
+  EXPECT_EQ(seen.culled_patches, 1u);
+  ASSERT_NO_THROW(validate(seen.mesh));
+  EXPECT_LE(seen.measured_error, seen.error_bound);
+  const TopologyReport report = analyze(welded_faces(seen.mesh));
+  EXPECT_EQ(report.components, 1);
+  EXPECT_EQ(report.boundary_loops, 1);
+  EXPECT_TRUE(report.manifold);
 }
 
 // Random patches and random C0-joined grids of patches, at random tolerances.
