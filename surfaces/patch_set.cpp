@@ -100,28 +100,36 @@ double elevated_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b,
   return max_distance(up(a), up(b), reversed);
 }
 
-// The parameter t in (from, 1] of `curve` nearest to q: the best of 64 samples, then Newton
-// steps on (C(t) - q) . C'(t) = 0 kept inside the interval.
-double nearest_parameter(const BezierCurve3& curve, double from, const Vec3& q) {
+// The parameters t in (from, 1] where `curve` comes within `tolerance` of q, in increasing
+// order: every local minimum of the distance over 64 samples, refined by Newton steps on
+// (C(t) - q) . C'(t) = 0 kept inside the interval (an edge that passes near q twice gives both).
+std::vector<double> near_parameters(const BezierCurve3& curve, double from, const Vec3& q, double tolerance) {
   constexpr int samples = 64;
-  double best = 1.0;
-  double best_distance = (curve.evaluate(1.0) - q).norm();
-  for (int k = 1; k < samples; ++k) {
-    const double t = from + (1.0 - from) * k / samples;
-    const double d = (curve.evaluate(t) - q).norm();
-    if (d < best_distance) best_distance = d, best = t;
+  std::vector<double> ts(samples + 1);
+  std::vector<double> distances(samples + 1);
+  for (int k = 0; k <= samples; ++k) {
+    ts[k] = k == samples ? 1.0 : from + (1.0 - from) * k / samples;
+    distances[k] = (curve.evaluate(ts[k]) - q).norm();
   }
-  double t = best;
-  for (int iteration = 0; iteration < 20; ++iteration) {
-    const std::vector<Vec3> d = derivatives(curve, t, 2);
-    const double f = (d[0] - q).dot(d[1]);
-    const double df = d[1].squaredNorm() + (d[0] - q).dot(d[2]);
-    if (!(df > 0.0)) break;
-    const double next = std::clamp(t - f / df, from, 1.0);
-    if (next == t) break;
-    t = next;
+  std::vector<double> result;
+  for (int k = 1; k <= samples; ++k) {
+    if (distances[k] > distances[k - 1] || (k < samples && distances[k] > distances[k + 1])) continue;
+    double t = ts[k];
+    double best = distances[k];
+    for (int iteration = 0; iteration < 20; ++iteration) {
+      const std::vector<Vec3> d = derivatives(curve, t, 2);
+      const double f = (d[0] - q).dot(d[1]);
+      const double df = d[1].squaredNorm() + (d[0] - q).dot(d[2]);
+      if (!(df > 0.0)) break;
+      const double next = std::clamp(t - f / df, from, 1.0);
+      const double distance = (curve.evaluate(next) - q).norm();
+      if (next == t || !(distance <= best)) break;
+      t = next;
+      best = distance;
+    }
+    if (best <= tolerance) result.push_back(t);
   }
-  return (curve.evaluate(t) - q).norm() <= best_distance ? t : best;
+  return result;
 }
 
 // Edge `a` tiled end to end by other unmatched edges (a T-junction), or nothing. From the
@@ -135,7 +143,13 @@ std::optional<TJunction> tile_edge(std::size_t a, const std::vector<EdgeRef>& ed
   TJunction tiling{edges[a], {}, {}, {}, true, 0.0};
   std::vector<std::size_t> used;
   double from = 0.0;
+  // The next part starts within the tolerance of the long edge at `from`, or of the last part's
+  // far end (the two may be up to twice the tolerance apart).
   Vec3 start = points[a].front();
+  Vec3 last_end = start;
+  const auto starts_here = [&](const Vec3& p) {
+    return (p - start).norm() <= tolerance || (p - last_end).norm() <= tolerance;
+  };
   // Parts shorter than 2^-20 of the edge are not looked for: each part advances the tiling.
   while (from < 1.0 && tiling.parts.size() < 64) {
     std::optional<std::size_t> found;
@@ -145,16 +159,18 @@ std::optional<TJunction> tile_edge(std::size_t a, const std::vector<EdgeRef>& ed
     ends.near(start, [&](std::size_t b) {
       if (found || b == a || matched[b] || std::find(used.begin(), used.end(), b) != used.end()) return;
       const std::vector<Vec3>& pb = points[b];
-      const bool reversed = (pb.back() - start).norm() <= tolerance;
-      if (!reversed && (pb.front() - start).norm() > tolerance) return;
+      const bool reversed = !starts_here(pb.front());
+      if (reversed && !starts_here(pb.back())) return;
       const Vec3& far = reversed ? pb.front() : pb.back();
-      const double t = nearest_parameter(curve, from, far);
-      if ((curve.evaluate(t) - far).norm() > tolerance || t - from < 0x1p-20) return;
       const bool last = (points[a].back() - far).norm() <= tolerance;
-      const double end = last ? 1.0 : t;
-      const double gap = elevated_distance(subcurve(curve, from, end).control_points(), pb, reversed);
-      if (gap > tolerance) return;
-      found = b, found_t = end, found_reversed = reversed, found_gap = gap;
+      for (const double t : near_parameters(curve, from, far, tolerance)) {
+        if (t - from < 0x1p-20) continue;
+        const double end = last && t > 1.0 - 0x1p-20 ? 1.0 : t;
+        const double gap = elevated_distance(subcurve(curve, from, end).control_points(), pb, reversed);
+        if (gap > tolerance) continue;
+        found = b, found_t = end, found_reversed = reversed, found_gap = gap;
+        return;
+      }
     });
     if (!found) return std::nullopt;
     used.push_back(*found);
@@ -166,6 +182,7 @@ std::optional<TJunction> tile_edge(std::size_t a, const std::vector<EdgeRef>& ed
     tiling.consistently_oriented = tiling.consistently_oriented && opposite;
     from = found_t;
     start = curve.evaluate(from);
+    last_end = found_reversed ? points[*found].front() : points[*found].back();
   }
   if (from < 1.0 || tiling.parts.size() < 2) return std::nullopt;
   return tiling;
@@ -375,6 +392,15 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
   }
   PointGrid corner_grid(std::max(2.0 * tolerance_, 1e-300));
   for (std::size_t k = 0; k < corners.size(); ++k) corner_grid.insert(corners[k].point, k);
+  // The shared edges (by their first patch) and T-junctions of each patch: a point looks only at
+  // those of the patches there.
+  std::vector<std::vector<std::uint32_t>> shared_of(patches_.size());
+  for (std::uint32_t i = 0; i < shared_.size(); ++i) shared_of[shared_[i].first.patch].push_back(i);
+  std::vector<std::vector<std::uint32_t>> junctions_of(patches_.size());
+  for (std::uint32_t i = 0; i < t_junctions_.size(); ++i) {
+    junctions_of[t_junctions_[i].edge.patch].push_back(i);
+    for (const EdgeRef& part : t_junctions_[i].parts) junctions_of[part.patch].push_back(i);
+  }
   std::vector<bool> visited(corners.size(), false);
   for (std::size_t k = 0; k < corners.size(); ++k) {
     if (visited[k]) continue;
@@ -396,16 +422,21 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
       return static_cast<std::size_t>(std::lower_bound(here.begin(), here.end(), patch) - here.begin());
     };
     UnionFind groups(here.size());
-    for (const SharedEdge& s : shared_) {
-      if (!std::binary_search(here.begin(), here.end(), s.first.patch) ||
-          !std::binary_search(here.begin(), here.end(), s.second.patch) || !touches(s.first)) {
-        continue;
+    std::vector<std::uint32_t> junctions;
+    for (const std::uint32_t patch : here) {
+      for (const std::uint32_t i : shared_of[patch]) {
+        const SharedEdge& s = shared_[i];
+        if (!std::binary_search(here.begin(), here.end(), s.second.patch) || !touches(s.first)) continue;
+        groups.unite(static_cast<std::uint32_t>(index_of(s.first.patch)), static_cast<std::uint32_t>(index_of(s.second.patch)));
       }
-      groups.unite(static_cast<std::uint32_t>(index_of(s.first.patch)), static_cast<std::uint32_t>(index_of(s.second.patch)));
+      junctions.insert(junctions.end(), junctions_of[patch].begin(), junctions_of[patch].end());
     }
+    std::sort(junctions.begin(), junctions.end());
+    junctions.erase(std::unique(junctions.begin(), junctions.end()), junctions.end());
     // The patches of a T-junction here meet along its long edge, which runs through the point
     // (a junction) or ends at it.
-    for (const TJunction& t : t_junctions_) {
+    for (const std::uint32_t i : junctions) {
+      const TJunction& t = t_junctions_[i];
       std::optional<std::uint32_t> first;
       const auto join = [&](const EdgeRef& e) {
         if (!std::binary_search(here.begin(), here.end(), e.patch) || !touches(e)) return;
@@ -431,6 +462,34 @@ std::optional<EdgeRef> PatchSet::neighbour(EdgeRef edge) const {
     if (s.second == edge) return s.first;
   }
   return std::nullopt;
+}
+
+std::vector<Shell> shells(const PatchSet& set) {
+  const auto count = static_cast<std::uint32_t>(set.patches().size());
+  UnionFind joined(count);
+  for (const SharedEdge& s : set.shared_edges()) joined.unite(s.first.patch, s.second.patch);
+  for (const TJunction& t : set.t_junctions()) {
+    for (const EdgeRef& part : t.parts) joined.unite(t.edge.patch, part.patch);
+  }
+  std::vector<std::int64_t> index(count, -1);
+  std::vector<Shell> result;
+  for (std::uint32_t p = 0; p < count; ++p) {
+    std::int64_t& i = index[joined.find(p)];
+    if (i < 0) {
+      i = static_cast<std::int64_t>(result.size());
+      result.push_back({{}, true, true});
+    }
+    result[static_cast<std::size_t>(i)].patches.push_back(p);
+  }
+  const auto shell_of = [&](std::uint32_t p) -> Shell& { return result[static_cast<std::size_t>(index[joined.find(p)])]; };
+  for (const EdgeRef& e : set.open_edges()) shell_of(e.patch).closed = false;
+  for (const SharedEdge& s : set.shared_edges()) {
+    if (!s.consistently_oriented) shell_of(s.first.patch).consistently_oriented = false;
+  }
+  for (const TJunction& t : set.t_junctions()) {
+    if (!t.consistently_oriented) shell_of(t.edge.patch).consistently_oriented = false;
+  }
+  return result;
 }
 
 PatchSetReport report(const PatchSet& set) {

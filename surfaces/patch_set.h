@@ -169,6 +169,20 @@ struct PatchSetReport {
   const PatchSet* set;
 };
 
+/// Patches joined by shared edges and T-junctions, one connected part of a set.
+struct Shell {
+  /// The patches, in increasing order.
+  std::vector<std::uint32_t> patches;
+  /// No open edge.
+  bool closed;
+  /// Every shared edge and T-junction part in it walked in opposite directions.
+  bool consistently_oriented;
+};
+
+/// The shells of a set: its edge-connected parts (touching points and collapsed edges do not
+/// join patches), in the order of their smallest patch.
+std::vector<Shell> shells(const PatchSet& set);
+
 /// The report of a patch set (keeps a pointer to `set` for the per-element listing).
 PatchSetReport report(const PatchSet& set);
 /// Human-readable report with every shared, open and collapsed edge, loop and touching point.

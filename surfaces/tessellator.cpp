@@ -403,7 +403,7 @@ class Tessellator {
       check_positive(options_.pixel_tolerance, "pixel tolerance");
     }
     double focal = options_.camera ? focal_length_pixels(*options_.camera) : 0.0;
-    const bool cull_back_faces = options_.camera && back_faces_hidden(*options_.camera);
+    const std::vector<bool> back_faces_hidden = options_.camera ? hidden_back_faces(*options_.camera) : std::vector<bool>();
     // Patches reaching behind the near limit get the tolerance of this depth.
     const double near_depth = 1e-3 * pieces_.diagonal;
     for (std::size_t p = 0; p < count_; ++p) {
@@ -418,11 +418,16 @@ class Tessellator {
         const Camera& camera = *options_.camera;
         const BezierPatch3& patch = (*pieces_.patches)[p];
         plan.tolerance = options_.pixel_tolerance * std::max(nearest_depth(patch, camera), near_depth) / focal;
-        plan.culled = outside_frustum(patch, camera) || (cull_back_faces && back_facing(patch, camera.eye));
+        plan.culled = outside_frustum(patch, camera) || (back_faces_hidden[p] && back_facing(patch, camera.eye));
       }
+      // The weld gap of the piece's edges comes on top of its pattern's bound (assemble): plan
+      // for the rest, down to half the tolerance (a gap beyond that shows in error_bound).
+      const double reserve = pieces_.gaps.empty() ? 0.0 : pieces_.gaps[p];
+      if (reserve > 0.0) plan.tolerance = std::max(plan.tolerance - reserve, 0.5 * plan.tolerance);
       GridSize grid{};
       try {
-        grid = planned_ ? (*planned_)[p] : grid_for_tolerance(plan.bounds, plan.tolerance, least_segments(plan.bounds));
+        grid = planned_ && reserve == 0.0 ? (*planned_)[p]
+                                          : grid_for_tolerance(plan.bounds, plan.tolerance, least_segments(plan.bounds));
       } catch (const InvalidInput&) {
         throw InvalidInput(detail::message("tessellate: piece ", p,
                                            " would need more than 2^20 segments per side at "
@@ -439,20 +444,26 @@ class Tessellator {
     }
   }
 
-  // Whether patches facing away from the camera may be left out (BackFaceCulling).
-  bool back_faces_hidden(const Camera& camera) const {
-    switch (options_.back_face_culling) {
-      case BackFaceCulling::always: return true;
-      case BackFaceCulling::never: return false;
-      case BackFaceCulling::automatic: break;
+  // Per piece, whether it may be left out where it faces away from the camera (BackFaceCulling).
+  std::vector<bool> hidden_back_faces(const Camera& camera) const {
+    if (options_.back_face_culling != BackFaceCulling::automatic) {
+      return std::vector<bool>(count_, options_.back_face_culling == BackFaceCulling::always);
     }
-    if (!pieces_.closed_outward) return false;
-    // Outside the box of the control points is outside the solid (it lies in their convex hull).
-    Eigen::AlignedBox3d box;
-    for (const BezierPatch3& patch : *pieces_.patches) {
-      for (const Vec3& q : patch.control_points()) box.extend(q);
+    std::vector<bool> hidden(count_, false);
+    if (pieces_.solids.empty()) return hidden;
+    // Outside the box of a solid's control points is outside the solid (its convex hull).
+    std::vector<Eigen::AlignedBox3d> boxes;
+    for (std::size_t p = 0; p < count_; ++p) {
+      const std::int32_t solid = pieces_.solids[p];
+      if (solid < 0) continue;
+      if (boxes.size() <= static_cast<std::size_t>(solid)) boxes.resize(static_cast<std::size_t>(solid) + 1);
+      for (const Vec3& q : (*pieces_.patches)[p].control_points()) boxes[static_cast<std::size_t>(solid)].extend(q);
     }
-    return !box.contains(camera.eye);
+    for (std::size_t p = 0; p < count_; ++p) {
+      const std::int32_t solid = pieces_.solids[p];
+      hidden[p] = solid >= 0 && !boxes[static_cast<std::size_t>(solid)].contains(camera.eye);
+    }
+    return hidden;
   }
 
   // Classes for every edge of every patch that is tessellated: a shared edge whose two patches
@@ -906,8 +917,12 @@ class Tessellator {
     for (PatchOutput& out : *outputs_) {
       double moved = 0.0;
       for (std::size_t k = 0; k < out.welded.size(); ++k) {
-        if (!out.owner[k]) moved = std::max(moved, ((*welded_positions_)[out.welded[k]] - out.positions[k]).norm());
+        if (out.owner[k]) continue;
+        // A welded point without an owner would be NaN: never let it pass as a finite gap.
+        const double d = ((*welded_positions_)[out.welded[k]] - out.positions[k]).norm();
+        if (!(d <= moved)) moved = d;
       }
+      PATCHWORK_ASSERT(std::isfinite(moved), "every welded point has a position");
       out.weld_gap = moved;
     }
     // (1) Boundary vertices, chained per welded point: first_vertex[id] -> next_vertex[...] -> ...
@@ -1352,15 +1367,46 @@ double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {
   return bounding_box(std::span<const BezierPatch3>(set.patches()), 1e-6 * set.size()).diagonal().norm();
 }
 
-// The set bounds a solid with its normals pointing out (SurfacePieces::closed_outward).
-bool encloses_outward(const PatchSet& set) {
-  const PatchSetReport r = report(set);
-  return r.closed && r.consistently_oriented && enclosed_volume(set.patches()) > 0.0;
+// Per patch, the largest gap of its joined edges (SurfacePieces::gaps): the control-point gap of
+// its shared edges and T-junctions (which bounds the curves' distance point for point, the
+// curves being convex combinations of their control points) and the spread of its collapsed
+// edges' control points around the point they weld to.
+std::vector<double> edge_gaps(const PatchSet& set) {
+  std::vector<double> gaps(set.patches().size(), 0.0);
+  const auto widen = [&](std::uint32_t p, double gap) { gaps[p] = std::max(gaps[p], gap); };
+  for (const SharedEdge& s : set.shared_edges()) {
+    widen(s.first.patch, s.continuity.gap);
+    widen(s.second.patch, s.continuity.gap);
+  }
+  for (const TJunction& t : set.t_junctions()) {
+    widen(t.edge.patch, t.gap);
+    for (const EdgeRef& part : t.parts) widen(part.patch, t.gap);
+  }
+  for (const EdgeRef& e : set.collapsed_edges()) {
+    const std::vector<Vec3> row = row_from_edge(set.patches()[e.patch], e.edge, 0);
+    for (const Vec3& q : row) widen(e.patch, (q - row.front()).norm());
+  }
+  return gaps;
+}
+
+// Per patch, the solid it bounds, or -1 (SurfacePieces::solids).
+std::vector<std::int32_t> solids_of(const PatchSet& set) {
+  std::vector<std::int32_t> solids(set.patches().size(), -1);
+  std::int32_t next = 0;
+  for (const Shell& shell : shells(set)) {
+    if (!shell.closed || !shell.consistently_oriented) continue;
+    double volume = 0.0;
+    for (std::uint32_t p : shell.patches) volume += volume_contribution(set.patches()[p]);
+    if (!(volume > 0.0)) continue;
+    for (std::uint32_t p : shell.patches) solids[p] = next;
+    ++next;
+  }
+  return solids;
 }
 
 // Pieces of `set`, each patch split k x k (k = 1: the patches themselves).
 SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k,
-                        double diagonal) {
+                        double diagonal, bool with_solids = true) {
   const std::vector<BezierPatch3>& patches = set.patches();
   SurfacePieces pieces;
   pieces.diagonal = diagonal;
@@ -1371,7 +1417,8 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
       pieces.shared.push_back({shared.first, shared.second, shared.reversed});
     pieces.collapsed = set.collapsed_edges();
     pieces.t_junctions = set.t_junctions();
-    pieces.closed_outward = encloses_outward(set);
+    pieces.gaps = edge_gaps(set);
+    if (with_solids) pieces.solids = solids_of(set);
     for (std::size_t p = 0; p < patches.size(); ++p) pieces.bounds.push_back(split_bounds(cells[p], 1, 0, 0));
     pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
                                       GridSamplesView out) {
@@ -1401,6 +1448,10 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
   };
   pieces.count = patches.size() * kk;
   pieces.patch_count = patches.size();
+  const std::vector<double> patch_gaps = edge_gaps(set);
+  if (std::any_of(patch_gaps.begin(), patch_gaps.end(), [](double g) { return g > 0.0; })) {
+    for (double g : patch_gaps) pieces.gaps.insert(pieces.gaps.end(), kk, g);
+  }
   const double size = 1.0 / k;  // exact for k = 2, 4: the split lines a/k are exact too
   for (std::uint32_t p = 0; p < patches.size(); ++p) {
     for (int b = 0; b < k; ++b) {
@@ -1489,7 +1540,9 @@ Tessellation tessellate(const PatchSet& set, const TessellationOptions& options)
 void tessellate(const PatchSet& set, const TessellationOptions& options, Tessellation& result) {
   const bool relative = options.relative_tolerance.has_value();
   const std::vector<std::vector<SecondDerivativeBounds>> cells = cell_bounds(set);
-  const SurfacePieces whole = pieces_of(set, cells, 1, tight_or_control_diagonal(set, relative));
+  // The solids cost a volume integral per patch: only automatic back-face culling needs them.
+  const bool with_solids = options.camera && options.back_face_culling == BackFaceCulling::automatic;
+  const SurfacePieces whole = pieces_of(set, cells, 1, tight_or_control_diagonal(set, relative), with_solids);
   // Splitting: only with a valid tolerance and no other mode (plan_patches reports the rest).
   const int modes =
       options.tolerance.has_value() + relative + options.segments.has_value() + options.camera.has_value();

@@ -58,8 +58,8 @@ enum class UvMode { none, patch, atlas };
 
 /// Which patches facing away from the camera's eye are left out.
 enum class BackFaceCulling {
-  /// Only where that cannot open a hole: the surface bounds a solid (SurfacePieces::closed_outward)
-  /// and the eye is outside the box of its control points.
+  /// Only where that cannot open a hole: the piece bounds a solid (SurfacePieces::solids) and
+  /// the eye is outside the box of that solid's control points.
   automatic,
   /// Every back-facing patch (the caller knows the back is never seen).
   always,
@@ -186,6 +186,10 @@ struct SurfacePieces {
   /// Edges against chains of other pieces' edges (PatchSet's T-junctions): the long edge gets
   /// its parts' points end to end, so the mesh is welded across the junction by index.
   std::vector<TJunction> t_junctions;
+  /// Per piece, an a-priori bound on how far welding moves its boundary points (the gaps of
+  /// its joined edges), or empty for none: the piece's pattern is planned for the tolerance less
+  /// this, since the measured move is added to its bound.
+  std::vector<double> gaps;
   /// Bounds on the second derivatives of each piece over [0,1]^2 (the guarantee rests on them).
   std::vector<SecondDerivativeBounds> bounds;
   /// Diagonal of a box holding the surface (relative tolerances are fractions of it; the camera
@@ -199,12 +203,13 @@ struct SurfacePieces {
   std::function<Vec3(std::uint32_t p, double u, double v)> evaluate;
   /// The pieces as Bezier patches, when they are (the camera mode needs them; else null).
   const std::vector<BezierPatch3>* patches = nullptr;
-  /// The pieces bound a solid with F_u x F_v pointing out of it: no open edge, every shared
-  /// edge walked in opposite directions, positive enclosed volume. Seen from outside, a ray
-  /// leaves the solid only after entering it through a front-facing point, so back-facing
-  /// pieces are hidden (BackFaceCulling::automatic relies on it; a self-intersecting surface can
-  /// break that, and needs BackFaceCulling::never).
-  bool closed_outward = false;
+  /// Per piece, the solid it bounds, or -1 (empty: none does). A solid is a shell (shells() of
+  /// a PatchSet) that is closed, consistently oriented and of positive enclosed volume, so that
+  /// F_u x F_v points out of it. Seen from outside the shell, a ray leaves the solid only after
+  /// entering it through a front-facing point of the same shell, so its back-facing pieces are
+  /// hidden, whatever other shells do (BackFaceCulling::automatic relies on it; a
+  /// self-intersecting shell can break that, and needs BackFaceCulling::never).
+  std::vector<std::int32_t> solids;
 
   /// Where a piece lies in the parametrisation the output speaks of (UVs, triangle_patches):
   /// [u0, u0 + size] x [v0, v0 + size] of patch `patch`.

@@ -16,6 +16,7 @@
 #include "subdivision/limit_tessellator.h"
 #include "subdivision/refine.h"
 #include "tests/meshes/face_lists.h"
+#include "tests/support/ray_cast.h"
 #include "tests/meshes/mesh_generators.h"
 
 namespace patchwork {
@@ -304,7 +305,11 @@ TEST(LimitSurface, AdaptiveRefinementIsolatesOnlyTheExtraordinaryVertices) {
 TEST(LimitSurface, AdaptivePatchesJoinAtTJunctionsIntoAClosedPatchSet) {
   const PatchSet set = to_patch_set(LimitSurface(cage_of(cube()), 3));
   const PatchSetReport r = report(set);
-  EXPECT_GT(r.t_junctions, 0u);
+  // Per face 12 (L - 1) + 4 = 28 patches at L = 3. In each corner quarter of a face, the
+  // irregular depth-2 patch is split into four of depth 3, and its two regular depth-2
+  // neighbours each meet two of them along one edge: 2 T-junctions a corner, 6 x 4 x 2 = 48.
+  EXPECT_EQ(r.patches, 168u);
+  EXPECT_EQ(r.t_junctions, 48u);
   EXPECT_TRUE(r.closed) << r.open_edges << " open edges";
   EXPECT_TRUE(r.consistently_oriented);
   EXPECT_EQ(r.touching_points, 0u);
@@ -317,8 +322,32 @@ TEST(LimitSurface, AdaptivePatchesJoinAtTJunctionsIntoAClosedPatchSet) {
   EXPECT_EQ(topology.euler, 2);
   EXPECT_TRUE(topology.manifold);
   EXPECT_LE(result.measured_error, result.error_bound);
+  EXPECT_LE(result.error_bound, result.tolerance);
   std::cout << r.patches << " patches, " << r.t_junctions << " T-junctions, " << result.mesh.triangle_count()
             << " triangles, weld gap " << result.weld_gap << "\n";
+  // A closed, outward surface whose silhouette runs through patch interiors: from outside,
+  // automatic back-face culling leaves out the far patches and changes only pixels on the
+  // silhouette, where the culled and the kept meshes are each within half a pixel of the surface.
+  TessellationOptions view;
+  view.camera = Camera{Vec3(3.0, -2.5, 2.0), Vec3(0, 0, 0), Vec3::UnitZ(), 35.0, 320, 240};
+  view.back_face_culling = BackFaceCulling::never;
+  const Tessellation whole = tessellate(set, view);
+  view.back_face_culling = BackFaceCulling::automatic;
+  const Tessellation culled = tessellate(set, view);
+  EXPECT_GT(culled.culled_patches, whole.culled_patches + 20);
+  const std::vector<double> all = testing::ray_cast(whole.mesh, *view.camera);
+  const std::vector<double> kept = testing::ray_cast(culled.mesh, *view.camera);
+  const double slack = 2.0 * (whole.error_bound + culled.error_bound);
+  std::size_t shown = 0;
+  std::size_t changed = 0;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (!std::isfinite(all[k])) continue;
+    ++shown;
+    changed += !(kept[k] <= all[k] + slack);
+  }
+  EXPECT_LE(changed, shown / 2000) << changed << " of " << shown << " pixels changed";
+  std::cout << culled.culled_patches - whole.culled_patches << " patches back-face culled, " << changed << " of "
+            << shown << " pixels changed\n";
 }
 
 TEST(LimitSurface, EndCapsConvergeWithTheIsolationLevel) {

@@ -11,6 +11,7 @@
 #include "core/errors.h"
 #include "io/bpt.h"
 #include "meshes/topology.h"
+#include "surfaces/surface_integrals.h"
 #include "tests/support/ray_cast.h"
 #include "tests/surfaces/patch_fixtures.h"
 
@@ -143,11 +144,23 @@ TEST(Tessellator, UniformSegmentsGiveTheClassicCount) {
   // Without a tolerance the bound is still computed; it is no looser than the Filip-Magedson-
   // Markot norm bound (M_uu du^2 + 2 M_uv du dv + M_vv dv^2) / 8 from each whole patch's net,
   // computed here on its own (the tessellator's sub-net, directional and cell bounds are tighter).
+  // M from the nets' second differences, written out here: n (n - 1) max |P_{i+2,j} - 2 P_{i+1,j}
+  // + P_ij|, n m max |P_{i+1,j+1} - P_{i+1,j} - P_{i,j+1} + P_ij|, m (m - 1) max |P_{i,j+2} - ...|.
   double norm_bound = 0.0;
   const double h = 1.0 / 16;
   for (const BezierPatch3& patch : teapot().patches()) {
-    const SecondDerivativeBounds M = second_derivative_bounds(patch);
-    norm_bound = std::max(norm_bound, (M.uu + 2 * M.uv + M.vv) * h * h / 8);
+    const int n = patch.degree_u();
+    const int m = patch.degree_v();
+    const auto P = [&](int i, int j) { return patch.control_point(i, j); };
+    double uu = 0.0, uv = 0.0, vv = 0.0;
+    for (int j = 0; j <= m; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        if (i + 2 <= n) uu = std::max(uu, n * (n - 1) * (P(i + 2, j) - 2 * P(i + 1, j) + P(i, j)).norm());
+        if (j + 2 <= m) vv = std::max(vv, m * (m - 1) * (P(i, j + 2) - 2 * P(i, j + 1) + P(i, j)).norm());
+        if (i + 1 <= n && j + 1 <= m) uv = std::max(uv, n * m * (P(i + 1, j + 1) - P(i + 1, j) - P(i, j + 1) + P(i, j)).norm());
+      }
+    }
+    norm_bound = std::max(norm_bound, (uu + 2 * uv + vv) * h * h / 8);
   }
   EXPECT_GT(result.error_bound, 0.0);
   expect_render_ready(teapot(), result, norm_bound);
@@ -415,9 +428,10 @@ TEST(Tessellator, CreasesSplitVerticesButStayWelded) {
 // PatchSet joins edges whose control points agree within its tolerance; the tessellator then
 // gives both patches one side's points, which moves the other side's by the gap. The gap is part
 // of the bound: the mesh is within error_bound of each patch's own surface (measured), and the
-// gap reported is the exact offset (the second patch's edge row moved by delta).
+// gap reported is the exact offset (the second patch's edge row moved by delta). The patterns
+// are planned for the tolerance less the gap, so a gap below half the tolerance keeps the bound
+// within the tolerance; a larger one shows in it.
 TEST(Tessellator, WeldGapIsPartOfTheBound) {
-  const double delta = 2e-4;
   // A biquadratic height field over [0,1]^2.
   const double heights[3][3] = {{0.0, 0.3, 0.1}, {0.4, -0.2, 0.2}, {0.1, 0.3, 0.0}};
   std::vector<Vec3> left_points;
@@ -425,25 +439,31 @@ TEST(Tessellator, WeldGapIsPartOfTheBound) {
     for (int i = 0; i <= 2; ++i) left_points.emplace_back(0.5 * i, 0.5 * j, heights[j][i]);
   }
   const BezierPatch3 left(2, 2, left_points);
-  // The right patch starts where `left` ends (its u0 edge on left's u1 edge), moved by delta in z.
-  std::vector<Vec3> right_points;
-  for (int j = 0; j <= left.degree_v(); ++j) {
-    for (int i = 0; i <= left.degree_u(); ++i) {
-      Vec3 q = left.control_point(i, j) + Vec3(1, 0, 0);
-      if (i == 0) q = left.control_point(left.degree_u(), j) + Vec3(0, 0, delta);
-      right_points.push_back(q);
-    }
-  }
-  const BezierPatch3 right(left.degree_u(), left.degree_v(), right_points);
-  const PatchSet set({left, right}, 1e-3);
-  ASSERT_EQ(set.shared_edges().size(), 1u);
   TessellationOptions options;
   options.tolerance = 1e-5;
-  const Tessellation result = tessellate(set, options);
-  EXPECT_NEAR(result.weld_gap, delta, 1e-12);
-  EXPECT_GE(result.measured_error, 0.99 * delta);
-  EXPECT_LE(result.measured_error, result.error_bound);
-  EXPECT_LE(result.error_bound, *options.tolerance + result.weld_gap);
+  for (const double delta : {2e-6, 2e-4}) {
+    // The right patch starts where `left` ends (its u0 edge on left's u1 edge), moved by delta in z.
+    std::vector<Vec3> right_points;
+    for (int j = 0; j <= left.degree_v(); ++j) {
+      for (int i = 0; i <= left.degree_u(); ++i) {
+        Vec3 q = left.control_point(i, j) + Vec3(1, 0, 0);
+        if (i == 0) q = left.control_point(left.degree_u(), j) + Vec3(0, 0, delta);
+        right_points.push_back(q);
+      }
+    }
+    const PatchSet set({left, BezierPatch3(2, 2, right_points)}, 1e-3);
+    ASSERT_EQ(set.shared_edges().size(), 1u);
+    const Tessellation result = tessellate(set, options);
+    EXPECT_NEAR(result.weld_gap, delta, 1e-12);
+    EXPECT_GE(result.measured_error, 0.99 * delta);
+    EXPECT_LE(result.measured_error, result.error_bound);
+    if (delta < 0.5 * *options.tolerance) {
+      EXPECT_LE(result.error_bound, *options.tolerance);
+    } else {
+      EXPECT_GT(result.error_bound, *options.tolerance);
+      EXPECT_LE(result.error_bound, 0.5 * *options.tolerance + result.weld_gap);
+    }
+  }
   // Where the edges agree exactly there is nothing to add.
   const Tessellation exact = tessellate(PatchSet({left}), options);
   EXPECT_EQ(exact.weld_gap, 0.0);
@@ -490,6 +510,7 @@ TEST(Tessellator, BackFaceCullingOpensNoHoleInAnOpenSurface) {
   options.back_face_culling = BackFaceCulling::always;
   const Tessellation always = tessellate(teapot(), options);
   ASSERT_GT(always.culled_patches, 0u);
+  EXPECT_EQ(automatic.culled_patches, whole.culled_patches);  // the frustum's only: the teapot is open
   const std::vector<double> seen = testing::ray_cast(whole.mesh, *options.camera);
   const std::size_t covered = static_cast<std::size_t>(std::count_if(seen.begin(), seen.end(), [](double z) { return std::isfinite(z); }));
   ASSERT_GT(covered, seen.size() / 20);
@@ -552,12 +573,48 @@ TEST(Tessellator, BackFaceCullingOnAClosedSurfaceKeepsTheImage) {
   options.camera = Camera{Vec3(3.0, -4.0, 2.5), Vec3(0, 0, 0), Vec3::UnitZ(), 40.0, 400, 300};
   EXPECT_EQ(tessellate(PatchSet(inward), options).culled_patches, 0u);
   EXPECT_EQ(back_faces_culled(cube), 3u);
+  // Two shells, the outward cube and a smaller inside-out one beside it: the set is closed,
+  // consistently oriented and of positive volume as a whole, but only the outward shell bounds a
+  // solid. Its far faces are culled; the inside-out shell's are drawn, and the view is kept.
+  std::vector<BezierPatch3> two = cube.patches();
+  for (const BezierPatch3& face : inward) {
+    std::vector<Vec3> points = face.control_points();
+    for (Vec3& q : points) q = 0.5 * q + Vec3(0, 4, 0);
+    two.emplace_back(3, 3, std::move(points));
+  }
+  const PatchSet shells(two);
+  ASSERT_TRUE(report(shells).closed);
+  ASSERT_TRUE(report(shells).consistently_oriented);
+  ASSERT_GT(enclosed_volume(shells.patches()), 0.0);
+  options.camera = Camera{Vec3(6.0, 1.0, 3.0), Vec3(0, 2, 0), Vec3::UnitZ(), 50.0, 400, 300};
+  EXPECT_EQ(back_faces_culled(shells), 3u);
+  TessellationOptions never = options;
+  never.back_face_culling = BackFaceCulling::never;
+  const Tessellation drawn = tessellate(shells, never);
+  const std::vector<double> both = testing::ray_cast(drawn.mesh, *options.camera);
+  const auto shown = static_cast<std::size_t>(std::count_if(both.begin(), both.end(), [](double z) { return std::isfinite(z); }));
+  // Pixels that show nothing, or something farther, once culled. Where a culled face meets a kept
+  // one on the silhouette the two meshes are each within the pixel tolerance (half a pixel) of
+  // the surface, so a pixel centre there may fall on either side.
+  const auto changed = [&](const Tessellation& culled) {
+    const std::vector<double> seen = testing::ray_cast(culled.mesh, *options.camera);
+    const double slack = 2.0 * (drawn.error_bound + culled.error_bound);
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < both.size(); ++k) count += std::isfinite(both[k]) && !(seen[k] <= both[k] + slack);
+    return count;
+  };
+  const std::size_t lost = changed(tessellate(shells, options));
+  EXPECT_LE(lost, shown / 2000);
+  options.back_face_culling = BackFaceCulling::always;
+  const std::size_t lost_always = changed(tessellate(shells, options));
+  EXPECT_GT(lost_always, shown / 50);
+  std::cout << "two shells: " << shown << " pixels covered, " << lost << " changed on the silhouette, " << lost_always
+            << " when every back face is culled\n";
 }
 
 // T-junctions (a long edge against two or three shorter edges, parts reversed and of higher
 // degree) are welded by index: the long edge takes its parts' points end to end, so the mesh is
-// one disk with one boundary loop (three components before). At a coarse tolerance the long
-// edge's patch needs fewer points than its parts, at a fine one more: both directions hold.
+// one disk with one boundary loop (three components before), at coarse and fine tolerances.
 TEST(Tessellator, TJunctionsAreWeldedWatertight) {
   std::vector<BezierPatch3> three = testing::t_junction_pieces(testing::wavy_bicubic(), {0.25, 0.6});
   three[2] = testing::turned_half(three[2]);
@@ -578,6 +635,22 @@ TEST(Tessellator, TJunctionsAreWeldedWatertight) {
       EXPECT_LT(result.weld_gap, 1e-14);
     }
   }
+  // A part off the long edge by 2e-10 (inside the set's tolerance of 1e-9 of its size) is still
+  // joined; welding moves its points, and the move is in the bound.
+  std::vector<BezierPatch3> moved = testing::t_junction_pieces(testing::wavy_bicubic(), {0.3});
+  std::vector<Vec3> points = moved[2].control_points();
+  for (int i = 0; i <= 3; ++i) points[static_cast<std::size_t>(i)].z() += 2e-10;
+  moved[2] = BezierPatch3(3, 3, points);
+  const PatchSet near(moved);
+  ASSERT_EQ(near.t_junctions().size(), 1u);
+  TessellationOptions fine;
+  fine.tolerance = 1e-4;
+  const Tessellation joined = tessellate(near, fine);
+  EXPECT_GT(joined.weld_gap, 1e-10);
+  EXPECT_LE(joined.weld_gap, 2e-10 * (1 + 1e-6));
+  EXPECT_LE(joined.measured_error, joined.error_bound);
+  EXPECT_LE(joined.error_bound, *fine.tolerance);
+  EXPECT_EQ(analyze(welded_faces(joined.mesh)).components, 1);
   // A part outside the view is culled; the long edge keeps its piece, and the rest stays welded.
   const PatchSet set(testing::t_junction_pieces(testing::wavy_bicubic(), {0.3}));
   TessellationOptions view;
