@@ -216,5 +216,83 @@ RC_GTEST_PROP(TessellatorPoleNormals, AMixedDegreePatchCollapsedOnAnUEdgeHasTheE
   RC_ASSERT(check.pole_spread <= 2e-9);
 }
 
+// Each welded edge that only one triangle uses lies on an open edge of that triangle's patch:
+// its corners' patch parameters are on one side of the square, PatchSet lists that side as open,
+// and the corners are that patch's points there (up to the weld gap).
+bool boundary_lies_on_open_edges(const PatchSet& set, const Tessellation& result) {
+  const RenderMesh& mesh = result.mesh;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::pair<std::size_t, int>>> uses;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      uses[std::minmax(mesh.position_ids[mesh.indices[3 * t + k]], mesh.position_ids[mesh.indices[3 * t + (k + 1) % 3]])]
+          .emplace_back(t, k);
+    }
+  }
+  const auto on_side = [](const Vec2& uv, PatchEdge edge) {
+    switch (edge) {
+      case PatchEdge::v0: return uv.y() == 0;
+      case PatchEdge::u1: return uv.x() == 1;
+      case PatchEdge::v1: return uv.y() == 1;
+      case PatchEdge::u0: return uv.x() == 0;
+    }
+    return false;
+  };
+  for (const auto& [edge, triangles] : uses) {
+    if (triangles.size() != 1) continue;
+    const auto [t, k] = triangles.front();
+    const std::uint32_t p = result.triangle_patches[t];
+    const Vec2& a = mesh.uvs[mesh.indices[3 * t + k]];
+    const Vec2& b = mesh.uvs[mesh.indices[3 * t + (k + 1) % 3]];
+    const bool open = std::any_of(set.open_edges().begin(), set.open_edges().end(), [&](const EdgeRef& e) {
+      return e.patch == p && on_side(a, e.edge) && on_side(b, e.edge);
+    });
+    if (!open) return false;
+    for (int c : {k, (k + 1) % 3}) {
+      const std::uint32_t v = mesh.indices[3 * t + c];
+      const Vec3 point = set.patches()[p].evaluate(mesh.uvs[v].x(), mesh.uvs[v].y());
+      if ((point - mesh.positions[v]).norm() > result.weld_gap + 1e-12 * set.size()) return false;
+    }
+  }
+  return true;
+}
+
+// Sets with poles, turned and degree-elevated patches, closed sets and pairs of sets: the welded
+// mesh is a manifold, orientable, with the patch set's boundary loops (none where it is closed),
+// the fixture's Euler characteristic and components, its boundary on open edges only, and the
+// guarantee holds.
+RC_GTEST_PROP(TessellatorTopology, WeldedMeshHasThePatchSetsTopology, ()) {
+  const testing::PatchSetFixture fixture = *testing::any_patch_set();
+  RC_TAG(fixture.kind);
+  RC_LOG() << fixture.kind << ":";
+  for (const BezierPatch3& patch : fixture.patches) RC_LOG() << " (" << patch.degree_u() << ", " << patch.degree_v() << ")";
+  const PatchSet set(fixture.patches);
+  // The fixture is what it says.
+  RC_ASSERT(set.open_edges().empty() == fixture.closed);
+  RC_ASSERT(static_cast<Count>(set.boundary_loops().size()) == fixture.boundary_loops);
+  TessellationOptions options;
+  options.crease_angle = *rc::gen::element(0.0, 0.0174532925199432958, 0.5);
+  if (*rc::gen::inRange(0, 4) == 0) {
+    // Not 1: a fan of two patches then has two chord triangles on the same three points (each
+    // patch spans half the pole), which no tolerance mode makes (curved patches get two segments).
+    options.segments = *rc::gen::element(2, 3);
+  } else {
+    options.relative_tolerance = *rc::gen::element(3e-2, 1e-2, 3e-3);
+  }
+  const Tessellation result = tessellate(set, options);
+  validate(result.mesh);
+  const double slack = 1e-12 * set.size();
+  if (!options.segments) RC_ASSERT(result.error_bound <= result.tolerance + result.weld_gap + slack);
+  RC_ASSERT(result.measured_error <= result.error_bound * (1 + 1e-9) + slack);
+  const TopologyReport report = analyze(welded_faces(result.mesh));
+  RC_ASSERT(report.manifold);
+  RC_ASSERT(report.orientable);
+  RC_ASSERT(report.closed == fixture.closed);
+  RC_ASSERT(report.euler == fixture.euler);
+  RC_ASSERT(report.components == fixture.components);
+  RC_ASSERT(report.boundary_loops == static_cast<Count>(set.boundary_loops().size()));
+  RC_ASSERT(report.isolated_vertices == 0);
+  RC_ASSERT(boundary_lies_on_open_edges(set, result));
+}
+
 }  // namespace
 }  // namespace patchwork::tessellator_properties
