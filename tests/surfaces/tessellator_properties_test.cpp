@@ -294,5 +294,68 @@ RC_GTEST_PROP(TessellatorTopology, WeldedMeshHasThePatchSetsTopology, ()) {
   RC_ASSERT(boundary_lies_on_open_edges(set, result));
 }
 
+// Everything a Tessellation holds, bit for bit.
+void expect_identical(const Tessellation& a, const Tessellation& b, const char* mode, int threads) {
+  SCOPED_TRACE(::testing::Message() << mode << ", " << threads << " threads");
+  EXPECT_EQ(a.mesh.indices, b.mesh.indices);
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.mesh.normals, b.mesh.normals);
+  EXPECT_EQ(a.mesh.uvs, b.mesh.uvs);
+  EXPECT_EQ(a.mesh.tangents, b.mesh.tangents);
+  EXPECT_EQ(a.mesh.position_ids, b.mesh.position_ids);
+  EXPECT_EQ(a.triangle_patches, b.triangle_patches);
+  EXPECT_EQ(a.tolerance, b.tolerance);
+  EXPECT_EQ(a.error_bound, b.error_bound);
+  EXPECT_EQ(a.weld_gap, b.weld_gap);
+  EXPECT_EQ(a.measured_error, b.measured_error);
+  EXPECT_EQ(a.culled_patches, b.culled_patches);
+  EXPECT_EQ(a.culled_triangles, b.culled_triangles);
+  EXPECT_EQ(a.welded_vertices, b.welded_vertices);
+}
+
+// 1, 2, 3 and 7 threads give the same output in every mode of the library: absolute and relative
+// tolerance (split patches), uniform segments, and the camera with culling, on the teapot and on
+// a set of mixed degrees with poles. (Levels of detail are a loop over tolerances in the CLI,
+// tools/tessellate_command.cpp, not a library mode.)
+TEST(TessellatorThreads, EveryModeGivesTheSameOutputOnAnyThreadCount) {
+  const PatchSet teapot(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"));
+  const PatchSet lens(testing::mixed_degree_lens());
+  struct Mode {
+    const char* name;
+    const PatchSet* set;
+    TessellationOptions options;
+  };
+  std::vector<Mode> modes;
+  for (const PatchSet* set : {&teapot, &lens}) {
+    Mode absolute{"absolute tolerance", set, {}};
+    absolute.options.tolerance = 2e-3 * set->size();
+    absolute.options.tangents = true;
+    Mode relative{"relative tolerance", set, {}};
+    relative.options.relative_tolerance = 1e-3;
+    relative.options.uv = UvMode::atlas;
+    Mode segments{"segments", set, {}};
+    segments.options.segments = 12;
+    segments.options.tangents = true;
+    modes.insert(modes.end(), {absolute, relative, segments});
+  }
+  Mode camera{"camera", &teapot, {}};
+  camera.options.camera = Camera{Vec3(8, -6, 5), Vec3(0, 0, 1.5), Vec3::UnitZ(), 40.0, 640, 480};
+  camera.options.pixel_tolerance = 1.0;
+  camera.options.tangents = true;
+  modes.push_back(camera);
+  for (Mode& mode : modes) {
+    mode.options.threads = 1;
+    const Tessellation one = tessellate(*mode.set, mode.options);
+    ASSERT_GT(one.mesh.triangle_count(), 0u);
+    if (mode.options.camera) {
+      EXPECT_GT(one.culled_patches, 0u);
+    }
+    for (int threads : {2, 3, 7}) {
+      mode.options.threads = threads;
+      expect_identical(one, tessellate(*mode.set, mode.options), mode.name, threads);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace patchwork::tessellator_properties
