@@ -129,6 +129,17 @@ inline std::vector<BezierPatch3> polar_fan(int k, int n, int m, const std::vecto
   return patches;
 }
 
+/// Two fans glued at the rim (see the file comment): the upper one around `top` over `upper`, the
+/// lower one around `bottom` over `lower` with its rim row replaced by the upper's and its u running
+/// clockwise, so that both face out.
+inline std::vector<BezierPatch3> lens(int k, int n, int m, const std::vector<Vec3>& upper, std::vector<Vec3> lower,
+                                      const Vec3& top, const Vec3& bottom) {
+  std::copy(upper.begin(), upper.begin() + k * n, lower.begin());  // the common rim
+  std::vector<BezierPatch3> patches = polar_fan(k, n, m, upper, top);
+  for (BezierPatch3& patch : polar_fan(k, n, m, lower, bottom, true)) patches.push_back(std::move(patch));
+  return patches;
+}
+
 /// The ring of a fan: row j (0 .. m-1) at radius (1 - j / m) times radius(s, j), angle
 /// 2 pi s / (k n), height height(s, j).
 template <class Radius, class Height>
@@ -269,11 +280,8 @@ inline rc::Gen<PatchSetFixture> lens_fixture() {
     const Vec3 top(0, 0, *coordinate(0.5, 1.5));
     const Vec3 bottom(0, 0, -*coordinate(0.5, 1.5));
     const std::vector<Vec3> upper = random_fan_net(k, n, m, top.z() * 0.8);
-    std::vector<Vec3> lower = random_fan_net(k, n, m, bottom.z() * 0.8);
-    std::copy(upper.begin(), upper.begin() + k * n, lower.begin());  // the common rim
-    PatchSetFixture fixture{"lens", polar_fan(k, n, m, upper, top), true, 2, 1, 0};
-    for (BezierPatch3& patch : polar_fan(k, n, m, lower, bottom, true)) fixture.patches.push_back(std::move(patch));
-    return fixture;
+    const std::vector<Vec3> lower = random_fan_net(k, n, m, bottom.z() * 0.8);
+    return PatchSetFixture{"lens", lens(k, n, m, upper, lower, top, bottom), true, 2, 1, 0};
   });
 }
 
@@ -329,13 +337,10 @@ inline rc::Gen<PatchSetFixture> any_patch_set() {
 inline std::vector<BezierPatch3> mixed_degree_lens() {
   const int k = 4, n = 3, m = 2;
   const auto radius = [](int s, int j) { return 1.0 + 0.3 * std::sin(1.7 * s + 2.3 * j); };
-  const std::vector<Vec3> upper =
-      fan_net(k, n, m, radius, [](int s, int j) { return j == 0 ? 0.0 : 0.6 + 0.2 * std::cos(0.9 * s); });
-  std::vector<Vec3> lower =
-      fan_net(k, n, m, radius, [](int s, int j) { return j == 0 ? 0.0 : -0.5 - 0.2 * std::sin(1.3 * s); });
-  std::copy(upper.begin(), upper.begin() + k * n, lower.begin());
-  std::vector<BezierPatch3> patches = polar_fan(k, n, m, upper, Vec3(0, 0, 1.1));
-  for (BezierPatch3& patch : polar_fan(k, n, m, lower, Vec3(0, 0, -0.9), true)) patches.push_back(std::move(patch));
+  std::vector<BezierPatch3> patches =
+      lens(k, n, m, fan_net(k, n, m, radius, [](int s, int j) { return j == 0 ? 0.0 : 0.6 + 0.2 * std::cos(0.9 * s); }),
+           fan_net(k, n, m, radius, [](int s, int j) { return j == 0 ? 0.0 : -0.5 - 0.2 * std::sin(1.3 * s); }),
+           Vec3(0, 0, 1.1), Vec3(0, 0, -0.9));
   for (std::size_t p = 0; p < patches.size(); p += 2) patches[p] = turned(elevated_once(patches[p], p % 4 == 0), 1 + p % 3);
   return patches;
 }

@@ -16,6 +16,7 @@
 #include "meshes/topology.h"
 #include "surfaces/tessellator.h"
 #include "tests/surfaces/patch_set_fixtures.h"
+#include "tests/surfaces/tessellation_checks.h"
 
 // A named namespace: the test programs are unity builds, and tessellator_test.cpp's helpers live
 // in patchwork's anonymous namespace.
@@ -294,25 +295,6 @@ RC_GTEST_PROP(TessellatorTopology, WeldedMeshHasThePatchSetsTopology, ()) {
   RC_ASSERT(boundary_lies_on_open_edges(set, result));
 }
 
-// Everything a Tessellation holds, bit for bit.
-void expect_identical(const Tessellation& a, const Tessellation& b, const char* mode, int threads) {
-  SCOPED_TRACE(::testing::Message() << mode << ", " << threads << " threads");
-  EXPECT_EQ(a.mesh.indices, b.mesh.indices);
-  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
-  EXPECT_EQ(a.mesh.normals, b.mesh.normals);
-  EXPECT_EQ(a.mesh.uvs, b.mesh.uvs);
-  EXPECT_EQ(a.mesh.tangents, b.mesh.tangents);
-  EXPECT_EQ(a.mesh.position_ids, b.mesh.position_ids);
-  EXPECT_EQ(a.triangle_patches, b.triangle_patches);
-  EXPECT_EQ(a.tolerance, b.tolerance);
-  EXPECT_EQ(a.error_bound, b.error_bound);
-  EXPECT_EQ(a.weld_gap, b.weld_gap);
-  EXPECT_EQ(a.measured_error, b.measured_error);
-  EXPECT_EQ(a.culled_patches, b.culled_patches);
-  EXPECT_EQ(a.culled_triangles, b.culled_triangles);
-  EXPECT_EQ(a.welded_vertices, b.welded_vertices);
-}
-
 // 1, 2, 3 and 7 threads give the same output in every mode of the library: absolute and relative
 // tolerance (split patches), uniform segments, and the camera with culling, on the teapot and on
 // a set of mixed degrees with poles. (Levels of detail are a loop over tolerances in the CLI,
@@ -352,7 +334,8 @@ TEST(TessellatorThreads, EveryModeGivesTheSameOutputOnAnyThreadCount) {
     }
     for (int threads : {2, 3, 7}) {
       mode.options.threads = threads;
-      expect_identical(one, tessellate(*mode.set, mode.options), mode.name, threads);
+      SCOPED_TRACE(::testing::Message() << mode.name << ", " << threads << " threads");
+      testing::expect_identical_tessellations(one, tessellate(*mode.set, mode.options));
     }
   }
 }
