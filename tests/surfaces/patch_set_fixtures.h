@@ -260,12 +260,23 @@ inline rc::Gen<TiltedDome> tilted_dome(int k, int n, int m) {
   });
 }
 
-/// A fan of 3 to 5 patches (2 when their degree along the rim is at least 2).
-inline rc::Gen<PatchSetFixture> fan_fixture() {
-  return rc::gen::exec([] {
+/// Degrees (n, m) in 1..3 and a patch count k from 3 (2 when n >= 2: a patch of degree 1 along the
+/// rim spanning half of it would be a chord through the pole) to max_k.
+struct FanShape {
+  int n, m, k;
+};
+inline rc::Gen<FanShape> fan_shape(int max_k) {
+  return rc::gen::exec([max_k] {
     const int n = *rc::gen::inRange(1, 4);
     const int m = *rc::gen::inRange(1, 4);
-    const int k = *rc::gen::inRange(n >= 2 ? 2 : 3, 6);
+    return FanShape{n, m, *rc::gen::inRange(n >= 2 ? 2 : 3, max_k + 1)};
+  });
+}
+
+/// A fan of up to 5 patches.
+inline rc::Gen<PatchSetFixture> fan_fixture() {
+  return rc::gen::exec([] {
+    const auto [n, m, k] = *fan_shape(5);
     const Vec3 pole(0, 0, *coordinate(0.5, 1.5));
     return PatchSetFixture{"fan", polar_fan(k, n, m, random_fan_net(k, n, m, pole.z() * 0.8), pole), false, 1, 1, 1};
   });
@@ -274,9 +285,7 @@ inline rc::Gen<PatchSetFixture> fan_fixture() {
 /// Two fans glued at the rim, the lower one running clockwise (so both face out).
 inline rc::Gen<PatchSetFixture> lens_fixture() {
   return rc::gen::exec([] {
-    const int n = *rc::gen::inRange(1, 4);
-    const int m = *rc::gen::inRange(1, 4);
-    const int k = *rc::gen::inRange(n >= 2 ? 2 : 3, 5);
+    const auto [n, m, k] = *fan_shape(4);
     const Vec3 top(0, 0, *coordinate(0.5, 1.5));
     const Vec3 bottom(0, 0, -*coordinate(0.5, 1.5));
     const std::vector<Vec3> upper = random_fan_net(k, n, m, top.z() * 0.8);

@@ -25,6 +25,20 @@ namespace {
 
 using testing::net_unit_normal;
 
+// The sanitizer build runs the coarser tolerances only: the same paths (split patches from 1e-2
+// on the teapot), a few times fewer triangles.
+#ifdef PATCHWORK_ENABLE_ASSERTS
+rc::Gen<double> relative_tolerance() { return rc::gen::element(3e-2, 1e-2); }
+constexpr double fine_tolerance = 1e-2;
+constexpr int uniform_segments = 6;
+constexpr double pixel_tolerance = 3.0;
+#else
+rc::Gen<double> relative_tolerance() { return rc::gen::element(3e-2, 1e-2, 3e-3); }
+constexpr double fine_tolerance = 1e-3;
+constexpr int uniform_segments = 12;
+constexpr double pixel_tolerance = 1.0;
+#endif
+
 // The unit normal a vertex must carry: exact(patch, u, v).
 using ExactNormal = std::function<Vec3(std::uint32_t, double, double)>;
 
@@ -150,7 +164,7 @@ RC_GTEST_PROP(TessellatorPoleNormals, ATiltedDomeHasItsPlanesNormalAtThePole, ()
   RC_ASSERT(set.collapsed_edges().size() == static_cast<std::size_t>(k));
   const Vec3 pole = motion * dome.pole;
   const Vec3 normal = motion.linear() * dome.normal;
-  const Tessellation result = tessellate(set, exact_normal_options(*rc::gen::element(3e-2, 1e-2, 3e-3)));
+  const Tessellation result = tessellate(set, exact_normal_options(*relative_tolerance()));
   const NormalCheck check = check_normals(set, result, pole, [&](std::uint32_t p, double u, double v) {
     return on_collapsed_edge(set, p, u, v) ? normal : net_unit_normal(set.patches()[p], u, v);
   });
@@ -182,7 +196,7 @@ RC_GTEST_PROP(TessellatorPoleNormals, ConesHaveTheirRulingsNormalAtTheApex, ()) 
   }
   const PatchSet set(patches);
   RC_ASSERT(set.collapsed_edges().size() == static_cast<std::size_t>(k));
-  const Tessellation result = tessellate(set, exact_normal_options(*rc::gen::element(3e-2, 1e-2, 3e-3)));
+  const Tessellation result = tessellate(set, exact_normal_options(*relative_tolerance()));
   const NormalCheck check = check_normals(set, result, apex, [&](std::uint32_t p, double u, double) {
     return cone_normal(net_row(cones[p], 0), apex, u);
   });
@@ -209,7 +223,7 @@ RC_GTEST_PROP(TessellatorPoleNormals, AMixedDegreePatchCollapsedOnAnUEdgeHasTheE
     RC_ASSERT(e.edge == (turns == 1 ? PatchEdge::u1 : PatchEdge::u0));
     RC_ASSERT(set.patches()[e.patch].degree_u() == 4);
   }
-  const Tessellation result = tessellate(set, exact_normal_options(*rc::gen::element(3e-2, 1e-2, 3e-3)));
+  const Tessellation result = tessellate(set, exact_normal_options(*relative_tolerance()));
   const NormalCheck check = check_normals(set, result, dome.pole, [&](std::uint32_t p, double u, double v) {
     return on_collapsed_edge(set, p, u, v) ? dome.normal : net_unit_normal(set.patches()[p], u, v);
   });
@@ -277,7 +291,7 @@ RC_GTEST_PROP(TessellatorTopology, WeldedMeshHasThePatchSetsTopology, ()) {
     // patch spans half the pole), which no tolerance mode makes (curved patches get two segments).
     options.segments = *rc::gen::element(2, 3);
   } else {
-    options.relative_tolerance = *rc::gen::element(3e-2, 1e-2, 3e-3);
+    options.relative_tolerance = *relative_tolerance();
   }
   const Tessellation result = tessellate(set, options);
   validate(result.mesh);
@@ -310,19 +324,19 @@ TEST(TessellatorThreads, EveryModeGivesTheSameOutputOnAnyThreadCount) {
   std::vector<Mode> modes;
   for (const PatchSet* set : {&teapot, &lens}) {
     Mode absolute{"absolute tolerance", set, {}};
-    absolute.options.tolerance = 2e-3 * set->size();
+    absolute.options.tolerance = 2 * fine_tolerance * set->size();
     absolute.options.tangents = true;
     Mode relative{"relative tolerance", set, {}};
-    relative.options.relative_tolerance = 1e-3;
+    relative.options.relative_tolerance = fine_tolerance;
     relative.options.uv = UvMode::atlas;
     Mode segments{"segments", set, {}};
-    segments.options.segments = 12;
+    segments.options.segments = uniform_segments;
     segments.options.tangents = true;
     modes.insert(modes.end(), {absolute, relative, segments});
   }
   Mode camera{"camera", &teapot, {}};
   camera.options.camera = Camera{Vec3(8, -6, 5), Vec3(0, 0, 1.5), Vec3::UnitZ(), 40.0, 640, 480};
-  camera.options.pixel_tolerance = 1.0;
+  camera.options.pixel_tolerance = pixel_tolerance;
   camera.options.tangents = true;
   modes.push_back(camera);
   for (Mode& mode : modes) {
