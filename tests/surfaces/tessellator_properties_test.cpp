@@ -338,7 +338,17 @@ TEST(TessellatorThreads, EveryModeGivesTheSameOutputOnAnyThreadCount) {
   camera.options.camera = Camera{Vec3(8, -6, 5), Vec3(0, 0, 1.5), Vec3::UnitZ(), 40.0, 640, 480};
   camera.options.pixel_tolerance = pixel_tolerance;
   camera.options.tangents = true;
+  camera.options.back_face_culling = BackFaceCulling::always;  // the teapot is open: asked for
   modes.push_back(camera);
+  // A closed cube culls its back by itself (BackFaceCulling::automatic; the lens has poles, where
+  // F_u x F_v vanishes, and no patch of it is back-facing everywhere by the Bernstein test).
+  std::vector<double> bulge(24);
+  for (std::size_t k = 0; k < bulge.size(); ++k) bulge[k] = 0.1 + 0.02 * static_cast<double>(k % 7);
+  const PatchSet cube(testing::bulged_cube(bulge));
+  Mode closed_camera{"camera, automatic culling", &cube, {}};
+  closed_camera.options.camera = Camera{Vec3(4, -3, 2.5), Vec3(0, 0, 0), Vec3::UnitZ(), 40.0, 640, 480};
+  closed_camera.options.pixel_tolerance = pixel_tolerance;
+  modes.push_back(closed_camera);
   for (Mode& mode : modes) {
     mode.options.threads = 1;
     const Tessellation one = tessellate(*mode.set, mode.options);

@@ -14,6 +14,8 @@
 #include "surfaces/surface_integrals.h"
 #include "tests/support/ray_cast.h"
 #include "tests/surfaces/patch_fixtures.h"
+#include "tests/surfaces/patch_set_fixtures.h"
+#include "tests/surfaces/tessellation_checks.h"
 
 namespace patchwork {
 namespace {
@@ -186,21 +188,7 @@ TEST(Tessellator, PolesAreOneVertexWithTheExactLimitNormal) {
   EXPECT_EQ(mesh.vertex_count(), result.welded_vertices);
 }
 
-void expect_same_tessellation(const Tessellation& a, const Tessellation& b) {
-  EXPECT_EQ(a.mesh.indices, b.mesh.indices);
-  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
-  EXPECT_EQ(a.mesh.normals, b.mesh.normals);
-  EXPECT_EQ(a.mesh.uvs, b.mesh.uvs);
-  EXPECT_EQ(a.mesh.tangents, b.mesh.tangents);
-  EXPECT_EQ(a.mesh.position_ids, b.mesh.position_ids);
-  EXPECT_EQ(a.triangle_patches, b.triangle_patches);
-  EXPECT_EQ(a.tolerance, b.tolerance);
-  EXPECT_EQ(a.error_bound, b.error_bound);
-  EXPECT_EQ(a.measured_error, b.measured_error);
-  EXPECT_EQ(a.culled_patches, b.culled_patches);
-  EXPECT_EQ(a.culled_triangles, b.culled_triangles);
-  EXPECT_EQ(a.welded_vertices, b.welded_vertices);
-}
+using testing::expect_identical_tessellations;
 
 TEST(Tessellator, OutputDoesNotDependOnTheThreadCount) {
   TessellationOptions options = relative(1e-3);
@@ -208,7 +196,7 @@ TEST(Tessellator, OutputDoesNotDependOnTheThreadCount) {
   options.threads = 1;
   const Tessellation one = tessellate(teapot(), options);
   options.threads = 2;
-  expect_same_tessellation(one, tessellate(teapot(), options));
+  expect_identical_tessellations(one, tessellate(teapot(), options));
 }
 
 // Streaming stores (automatic from 64 MiB of output) change how the output is written, not what:
@@ -224,9 +212,9 @@ TEST(Tessellator, StreamingStoresWriteTheSameOutput) {
     options->streaming_stores = false;
     const Tessellation ordinary = tessellate(teapot(), *options);
     options->streaming_stores = true;
-    expect_same_tessellation(tessellate(teapot(), *options), ordinary);
+    expect_identical_tessellations(tessellate(teapot(), *options), ordinary);
     options->streaming_stores.reset();
-    expect_same_tessellation(tessellate(teapot(), *options), ordinary);
+    expect_identical_tessellations(tessellate(teapot(), *options), ordinary);
   }
 }
 
@@ -246,7 +234,7 @@ TEST(Tessellator, ReusedOutputGivesTheFreshResult) {
   Tessellation reused;
   for (const TessellationOptions* options : {&uniform, &fine, &culled, &coarse, &uniform}) {
     tessellate(teapot(), *options, reused);
-    expect_same_tessellation(reused, tessellate(teapot(), *options));
+    expect_identical_tessellations(reused, tessellate(teapot(), *options));
   }
   // The camera run culled patches whose scratch held an earlier run's data.
   tessellate(teapot(), culled, reused);
@@ -254,11 +242,11 @@ TEST(Tessellator, ReusedOutputGivesTheFreshResult) {
   validate(reused.mesh);
   // A copy is the same value without the scratch; bad options leave the result as it was.
   const Tessellation copy = reused;
-  expect_same_tessellation(copy, reused);
+  expect_identical_tessellations(copy, reused);
   TessellationOptions bad;
   bad.segments = 0;
   EXPECT_THROW(tessellate(teapot(), bad, reused), InvalidInput);
-  expect_same_tessellation(copy, reused);
+  expect_identical_tessellations(copy, reused);
 }
 
 // The measured error is the largest |S - L| over ten barycentric samples of every triangle (the
@@ -469,31 +457,6 @@ TEST(Tessellator, WeldGapIsPartOfTheBound) {
   EXPECT_EQ(exact.weld_gap, 0.0);
 }
 
-// The cube [-1, 1]^3 as six bicubic faces with straight edges and their inner control points
-// pushed out by `bulge`, F_u x F_v pointing out: a closed, consistently oriented patch set.
-std::vector<BezierPatch3> bulged_cube(double bulge) {
-  std::vector<BezierPatch3> faces;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (const double side : {-1.0, 1.0}) {
-      Vec3 n = Vec3::Zero();
-      n[axis] = side;
-      // a x b = n.
-      Vec3 a = Vec3::Zero();
-      a[(axis + 1) % 3] = 1.0;
-      const Vec3 b = n.cross(a);
-      std::vector<Vec3> points;
-      for (int j = 0; j <= 3; ++j) {
-        for (int i = 0; i <= 3; ++i) {
-          const bool inner = i % 3 != 0 && j % 3 != 0;
-          points.push_back(n * (1.0 + (inner ? bulge : 0.0)) + (-1.0 + 2.0 * i / 3) * a + (-1.0 + 2.0 * j / 3) * b);
-        }
-      }
-      faces.emplace_back(3, 3, std::move(points));
-    }
-  }
-  return faces;
-}
-
 // Back-face culling must not open holes. The teapot is open: seen from above, the inside of the
 // body shows through the gap under the lid, and those patches face away from the eye. Ray cast
 // (tests/support/ray_cast.h), the culled mesh shows every pixel the whole mesh shows; culling
@@ -524,7 +487,7 @@ TEST(Tessellator, BackFaceCullingOpensNoHoleInAnOpenSurface) {
 // On a closed, outward-oriented surface seen from outside, back faces are hidden: they are
 // culled, and the culled mesh shows every pixel at the same depth as the whole mesh.
 TEST(Tessellator, BackFaceCullingOnAClosedSurfaceKeepsTheImage) {
-  const PatchSet cube(bulged_cube(0.3));
+  const PatchSet cube(testing::bulged_cube(std::vector<double>(24, 0.3)));
   TessellationOptions options;
   options.camera = Camera{Vec3(3.0, -4.0, 2.5), Vec3(0, 0, 0), Vec3::UnitZ(), 40.0, 400, 300};
   options.back_face_culling = BackFaceCulling::never;
