@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include <sstream>
 #include <string>
 
+#include "io/gltf.h"
 #include "io/mesh_file.h"
 #include "meshes/topology.h"
 #include "tests/support/temporary_directory.h"
@@ -161,6 +163,32 @@ TEST(Cli, ConvertBetweenMeshFormatsAndGltfKeepsTheMesh) {
   const CliRun bad = patchwork(folder, "convert " + quote(obj.string()) + " " + quote((folder.path() / "x.stl").string()));
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_EQ(lines(bad.err), 1);
+}
+
+TEST(Cli, ConvertTriangulatesANonConvexPolygonToGltf) {
+  // One L-shaped hexagon of area 3, counter-clockwise seen from +z, from corner (2, 1): the fan
+  // from it has a clockwise triangle (2, 1) (1, 1) (1, 2) over the notch, 4 triangles of total
+  // area 4.
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path obj = folder.path() / "l.obj";
+  std::ofstream(obj) << "v 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nf 1 2 3 4 5 6\n";
+  const fs::path glb = folder.path() / "l.glb";
+  const CliRun run = patchwork(folder, "convert " + quote(obj.string()) + " " + quote(glb.string()));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const RenderMesh mesh = read_gltf(glb);
+  ASSERT_EQ(mesh.triangle_count(), 4u);
+  double area = 0;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3& a = mesh.positions[mesh.indices[3 * t]];
+    const Vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+    const Vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
+    const Vec3 n = (b - a).cross(c - a) / 2;  // small integers: exact
+    EXPECT_EQ(n.x(), 0) << t;
+    EXPECT_EQ(n.y(), 0) << t;
+    EXPECT_GT(n.z(), 0) << "triangle " << t << " turns against the polygon";
+    area += std::abs(n.z());
+  }
+  EXPECT_EQ(area, 3.0);
 }
 
 TEST(Cli, SubdivideRefinesAMeshAndTessellatesItsLimit) {

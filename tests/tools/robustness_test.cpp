@@ -79,6 +79,8 @@ std::vector<BadInput> bad_inputs() {
       {"OBJ", "face with two corners", "two.obj", cube_obj + "f 1 2\n", "info two.obj"},
       {"OBJ", "NaN vertex", "nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "info nan.obj"},
       {"OBJ", "non-UTF-8 bytes in a keyword", "latin1.obj", "v 0 0 0\n\xe9\xe8 1 2 3\n", "info latin1.obj"},
+      {"OBJ", "self-intersecting face (a bow-tie) converted to glTF", "bowtie.obj",
+       "v 0 0 0\nv 2 2 0\nv 2 0 0\nv 0 1 0\nf 1 2 3 4\n", "convert bowtie.obj out.glb"},
       {"OFF", "wrong magic", "magic.off", "OF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "info magic.off"},
       {"OFF", "10^12 faces announced", "huge.off", "OFF\n3 1000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
        "info huge.off"},
