@@ -186,6 +186,69 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
+// The file system tinygltf sees while loading: only regular files inside the folder of the glTF
+// file, named by relative paths without "..", whatever symbolic links they pass through. tinygltf
+// percent-decodes a buffer's or image's URI and joins it to the folder (then to "."); these
+// callbacks get the joined path, so they judge exactly what it would open.
+struct Confinement {
+  std::string prefix;             // the canonical folder and '/', as tinygltf joins a URI to it
+  std::filesystem::path root;     // the canonical folder
+  std::string refused;            // why the first refused URI was refused; empty if none
+};
+
+std::string unexpanded(const std::string& path, void*) { return path; }  // no "~" or "$VAR"
+
+// Whether `path` is a regular file inside the folder; records why not when a URI names a file
+// elsewhere.
+bool confined(const std::string& path, Confinement& confinement) {
+  namespace fs = std::filesystem;
+  if (!path.starts_with(confinement.prefix)) return false;  // tinygltf's second try, relative to "."
+  const std::string uri = path.substr(confinement.prefix.size());
+  const auto refuse = [&](const std::string& why) {
+    if (confinement.refused.empty()) {
+      confinement.refused = detail::message("the file '", uri, "' named by a buffer or image URI (percent-decoded) ", why,
+                                            ": only data: URIs and files inside the folder of the glTF file are read");
+    }
+    return false;
+  };
+  if (uri.empty()) return false;
+  const fs::path relative(uri);
+  if (relative.is_absolute()) return refuse("is an absolute path");
+  for (const fs::path& part : relative) {
+    if (part == "..") return refuse("goes up out of the folder with '..'");
+  }
+  std::error_code error;
+  const fs::path resolved = fs::weakly_canonical(fs::path(path), error);
+  if (error) return false;
+  const auto [in_root, in_resolved] =
+      std::mismatch(confinement.root.begin(), confinement.root.end(), resolved.begin(), resolved.end());
+  if (in_root != confinement.root.end()) {
+    return refuse("leads out of the folder through a symbolic link, to " + resolved.string());
+  }
+  return fs::is_regular_file(resolved, error);
+}
+
+bool confined_exists(const std::string& path, void* confinement) {
+  return confined(path, *static_cast<Confinement*>(confinement));
+}
+
+bool confined_read(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* confinement) {
+  if (!confined(path, *static_cast<Confinement*>(confinement))) {
+    *error = "not a file inside the folder of the glTF file";
+    return false;
+  }
+  try {
+    const std::string bytes = read_file(path);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const IoError& e) {
+    *error = e.what();
+    return false;
+  }
+}
+
+bool refuse_write(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
 // What an accessor may hold.
 enum class Components {
   floats,     // float
@@ -448,13 +511,24 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
   loader.SetImageLoader(&skip_image, nullptr);
   std::string error;
   std::string warning;
-  const std::string folder = path.has_parent_path() ? path.parent_path().string() : std::string(".");
+  // The folder made absolute, so that tinygltf's second try (the URI relative to ".") never
+  // lands inside it by accident.
+  Confinement confinement;
+  {
+    std::error_code ignored;
+    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    confinement.root = std::filesystem::weakly_canonical(std::filesystem::absolute(folder, ignored), ignored);
+    confinement.prefix = confinement.root.string();
+    if (!confinement.prefix.ends_with('/')) confinement.prefix += '/';
+  }
+  loader.SetFsCallbacks({&confined_exists, &unexpanded, &confined_read, &refuse_write, &confinement});
   const auto size = static_cast<unsigned int>(bytes.size());
   const bool loaded =
       bytes.substr(0, 4) == "glTF"
           ? loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                        size, folder)
-          : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), size, folder);
+                                        size, confinement.root.string())
+          : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), size, confinement.root.string());
+  if (!confinement.refused.empty()) throw ParseError(name, 0, 0, confinement.refused);
   while (!error.empty() && std::isspace(static_cast<unsigned char>(error.back()))) error.pop_back();
   if (!loaded) throw ParseError(name, 0, 0, "not a glTF 2.0 file: " + error);
 

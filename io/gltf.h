@@ -95,11 +95,14 @@ void write_gltf_levels(const std::filesystem::path& path, std::span<const Render
 /// tangents are converted back to Z-up when `z_up` is set. Normals and tangents more than 1e-6
 /// from unit length are renormalised. position_ids weld vertices with equal positions (equal
 /// floats; -0 equals +0): a vertex's id is the first vertex with its position. Node transforms,
-/// materials and other attributes are not read. Buffers in other files are looked up beside
-/// `path`, which also names the file in messages.
+/// materials and other attributes are not read. `path` names the file in messages, and its folder
+/// is where buffers (and images) in other files are read: a URI is a data: URI or a relative path
+/// (percent-decoded, as tinygltf decodes it) to a regular file inside that folder, with no ".."
+/// and no symbolic link leading out of it.
 /// \throws ParseError naming `path` if the bytes are no such glTF (a required extension, sparse
 ///         accessors, values that are not finite, a zero normal, tangent w other than +-1, an
-///         index out of range, data outside its buffer, a buffer file that cannot be read).
+///         index out of range, data outside its buffer, a buffer file that cannot be read, a
+///         buffer or image URI naming a file outside the folder, naming the URI).
 RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path, bool z_up = true);
 
 /// Reads a .glb or .gltf file as parse_gltf does.

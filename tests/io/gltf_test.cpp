@@ -613,6 +613,92 @@ TEST_F(GltfFile, ReadsATrianglePrimitiveWithoutIndices) {
   EXPECT_EQ(first_difference(read_gltf(path), rounded(triangle)), "");
 }
 
+// A buffer in a file of its own: the cube's .glb JSON with buffers[0].uri = `uri`, in folder
+// inner/ of the test's folder, and the BIN chunk written to `bin` (relative to the test's folder).
+struct ExternalBuffer {
+  json document;
+  std::string bin;
+};
+
+ExternalBuffer external_buffer(const RenderMesh& mesh) {
+  const std::string glb = format_gltf(mesh, GltfFormat::glb);
+  ExternalBuffer external;
+  external.document = parse_glb(glb).document;
+  const std::size_t bin_header = 20 + u32_at(glb, 12);
+  external.bin = glb.substr(bin_header + 8, u32_at(glb, bin_header));
+  external.bin.resize(external.document["buffers"][0]["byteLength"].get<std::size_t>());
+  return external;
+}
+
+TEST_F(GltfFile, BufferUrisAreReadOnlyInsideTheFilesFolder) {
+  const RenderMesh mesh = cube();
+  const ExternalBuffer external = external_buffer(mesh);
+  fs::create_directories(file("inner") / "sub");
+  fs::create_directories(file("outside"));
+  write_file_atomically(file("inner") / "sub" / "data.bin", external.bin);
+  write_file_atomically(file("outside") / "data.bin", external.bin);
+  fs::create_symlink(file("outside") / "data.bin", file("inner") / "link.bin");
+  fs::create_symlink(fs::path("sub") / "data.bin", file("inner") / "inside_link.bin");
+  const auto with_uri = [&](const std::string& uri) {
+    json document = external.document;
+    document["buffers"][0]["uri"] = uri;
+    const fs::path path = file("inner") / "mesh.gltf";
+    write_file_atomically(path, document.dump());
+    return path;
+  };
+  // Inside the folder: read, as the .glb reads.
+  const RenderMesh expected = parse_gltf(format_gltf(mesh, GltfFormat::glb), "cube.glb");
+  for (const std::string uri : {"sub/data.bin", "sub%2Fdata.bin", "./sub/data.bin", "inside_link.bin"}) {
+    SCOPED_TRACE(uri);
+    EXPECT_EQ(first_difference(read_gltf(with_uri(uri)), expected), "");
+  }
+  // Anywhere else: a ParseError naming the file and the (decoded) URI, though the data is there.
+  struct Refused {
+    std::string uri, decoded, reason;
+  };
+  const std::vector<Refused> refused = {
+      {"../outside/data.bin", "../outside/data.bin", "goes up out of the folder with '..'"},
+      {"sub/../../outside/data.bin", "sub/../../outside/data.bin", "goes up out of the folder with '..'"},
+      {"%2e%2e/outside/data.bin", "../outside/data.bin", "goes up out of the folder with '..'"},
+      {"%2E%2E%2Foutside%2Fdata.bin", "../outside/data.bin", "goes up out of the folder with '..'"},
+      {(file("outside") / "data.bin").string(), (file("outside") / "data.bin").string(), "is an absolute path"},
+      {"link.bin", "link.bin", "leads out of the folder through a symbolic link"},
+  };
+  for (const Refused& r : refused) {
+    SCOPED_TRACE(r.uri);
+    const fs::path path = with_uri(r.uri);
+    try {
+      read_gltf(path);
+      ADD_FAILURE() << "no ParseError";
+    } catch (const ParseError& e) {
+      EXPECT_EQ(e.path(), path.string());
+      EXPECT_NE(std::string(e.what()).find("'" + r.decoded + "'"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(r.reason), std::string::npos) << e.what();
+    }
+  }
+  // A .glb whose buffer is an outside file is refused the same way.
+  json document = external.document;
+  document["buffers"][0]["uri"] = "../outside/data.bin";
+  {
+    const std::string text = document.dump();
+    std::string padded = text + std::string((4 - text.size() % 4) % 4, ' ');
+    std::string glb(12, '\0');
+    const auto put = [&](std::uint32_t x) { glb.append(reinterpret_cast<const char*>(&x), 4); };
+    put(static_cast<std::uint32_t>(padded.size()));
+    put(0x4E4F534Au);
+    glb += padded;
+    const std::uint32_t header[3] = {0x46546C67u, 2u, static_cast<std::uint32_t>(glb.size())};
+    std::memcpy(glb.data(), header, sizeof header);
+    write_file_atomically(file("inner") / "mesh.glb", glb);
+    try {
+      read_gltf(file("inner") / "mesh.glb");
+      ADD_FAILURE() << "no ParseError";
+    } catch (const ParseError& e) {
+      EXPECT_NE(std::string(e.what()).find("'../outside/data.bin'"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // The Khronos glTF validator (tools/gltf-validate, installed by scripts/setup)
 

@@ -53,6 +53,11 @@ const std::string ply_header_binary = "ply\nformat binary_little_endian 1.0\nele
                                       "property float y\nproperty float z\nelement face 1\n"
                                       "property list uchar int vertex_indices\nend_header\n";
 
+// A glTF document whose one buffer is the file `uri`.
+std::string gltf_buffer_uri(const std::string& uri) {
+  return R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" + uri + R"(", "byteLength": 36}]})";
+}
+
 std::vector<BadInput> bad_inputs() {
   const std::string bpt = patch_header + patch_points(16);
   return {
@@ -96,6 +101,12 @@ std::vector<BadInput> bad_inputs() {
       {"PLY", "no end_header", "header.ply", "ply\nformat ascii 1.0\nelement vertex 1\n", "info header.ply"},
       {"glTF", "not glTF at all", "garbage.glb", std::string("glTF\x02\x00\x00\x00\xff\xff", 10), "convert garbage.glb out.obj"},
       {"glTF", "JSON that is not glTF", "empty.gltf", "{}", "convert empty.gltf out.obj"},
+      {"glTF", "buffer URI going up out of the file's folder", "up.gltf", gltf_buffer_uri("../secret/data.bin"),
+       "convert up.gltf out.obj"},
+      {"glTF", "buffer URI going up, percent-encoded", "encoded.gltf", gltf_buffer_uri("%2e%2e/secret/data.bin"),
+       "convert encoded.gltf out.obj"},
+      {"glTF", "buffer URI an absolute path", "absolute.gltf", gltf_buffer_uri("/etc/passwd"),
+       "convert absolute.gltf out.obj"},
       // --- geometry and options
       {"mesh", "non-manifold edge (three faces) as a subdivision cage", "book.obj",
        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n", "subdivide book.obj -o out.obj"},
