@@ -5,6 +5,8 @@
 // TINYGLTF_IMPLEMENTATION or any TINYGLTF_NO_* macro, so our view of its classes is the library's.
 #include <tiny_gltf.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -358,9 +360,9 @@ class AccessorReader {
   std::string name_;
 };
 
-// A direction read from a file: back to Z-up, renormalised if more than 1e-6 from unit length.
-Vec3 read_direction(const double* xyz, bool z_up, const AccessorReader& reader, const char* what, std::size_t v) {
-  Vec3 d = from_gltf_axes(Vec3(xyz[0], xyz[1], xyz[2]), z_up);
+// A direction read from a file, renormalised if more than 1e-6 from unit length.
+Vec3 read_direction(const double* xyz, const AccessorReader& reader, const char* what, std::size_t v) {
+  Vec3 d(xyz[0], xyz[1], xyz[2]);
   if (!d.allFinite()) reader.fail(detail::message(what, " of vertex ", v, " is not finite"));
   const double length = d.norm();
   if (length == 0) reader.fail(detail::message(what, " of vertex ", v, " is zero"));
@@ -386,6 +388,190 @@ std::vector<std::uint32_t> weld_equal_positions(const std::vector<Vec3>& positio
     ids[order[k]] = starts_run ? order[k] : ids[order[k - 1]];
   }
   return ids;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The scene graph (glTF 2.0, 3.5 "Nodes and Hierarchy")
+
+using Affine = Eigen::Transform<double, 3, Eigen::Affine>;
+
+// "node 3" or "node 3 ('lid')", for messages.
+std::string node_name(const tinygltf::Model& model, std::size_t k) {
+  const std::string& name = model.nodes[k].name;
+  return name.empty() ? detail::message("node ", k) : detail::message("node ", k, " ('", name, "')");
+}
+
+// Node k's local transform: its matrix (column-major), or T * R * S from translation, rotation
+// (a quaternion x, y, z, w, normalised here) and scale, each the identity when absent.
+Affine local_transform(const tinygltf::Model& model, std::size_t k, const AccessorReader& reader) {
+  const tinygltf::Node& node = model.nodes[k];
+  const auto fail = [&](const std::string& what) { reader.fail(node_name(model, k) + ": " + what); };
+  const auto finite = [](const std::vector<double>& values) {
+    return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+  };
+  Affine transform = Affine::Identity();
+  if (!node.matrix.empty()) {
+    if (node.matrix.size() != 16 || !finite(node.matrix)) fail("matrix is not 16 finite numbers");
+    Eigen::Matrix4d m;
+    for (int column = 0; column < 4; ++column) {
+      for (int row = 0; row < 4; ++row) m(row, column) = node.matrix[static_cast<std::size_t>(4 * column + row)];
+    }
+    if (m.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) fail("matrix is not affine (its last row is not 0 0 0 1)");
+    transform.matrix() = m;
+  } else {
+    if (!node.translation.empty() && (node.translation.size() != 3 || !finite(node.translation))) {
+      fail("translation is not 3 finite numbers");
+    }
+    if (!node.rotation.empty() && (node.rotation.size() != 4 || !finite(node.rotation))) {
+      fail("rotation is not 4 finite numbers");
+    }
+    if (!node.scale.empty() && (node.scale.size() != 3 || !finite(node.scale))) fail("scale is not 3 finite numbers");
+    Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();
+    if (!node.rotation.empty()) {
+      const Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+      if (!(q.norm() > 0)) fail("rotation is the zero quaternion");
+      linear = q.normalized().toRotationMatrix();
+    }
+    if (!node.scale.empty()) linear = linear * Vec3(node.scale[0], node.scale[1], node.scale[2]).asDiagonal();
+    transform.linear() = linear;
+    if (!node.translation.empty()) {
+      transform.translation() = Vec3(node.translation[0], node.translation[1], node.translation[2]);
+    }
+  }
+  const double det = transform.linear().determinant();
+  if (!(det != 0) || !std::isfinite(det)) fail(detail::message("transform is singular (determinant ", det, ")"));
+  return transform;
+}
+
+// The world transform of every node holding mesh 0, in the order a depth-first walk of the
+// scene meets them: the roots of the default scene (scene 0 if none is named), or, without
+// scenes, every node that is no node's child. Without nodes, the mesh once as it is.
+std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorReader& reader) {
+  const std::size_t count = model.nodes.size();
+  if (count == 0) return {Affine::Identity()};
+  constexpr std::size_t none = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> parent(count, none);
+  for (std::size_t k = 0; k < count; ++k) {
+    for (const int child : model.nodes[k].children) {
+      if (child < 0 || static_cast<std::size_t>(child) >= count) {
+        reader.fail(detail::message(node_name(model, k), ": child ", child, " does not exist"));
+      }
+      const auto c = static_cast<std::size_t>(child);
+      if (parent[c] != none) {
+        reader.fail(detail::message(node_name(model, c), " has two parents (", parent[c], " and ", k,
+                                    "): the nodes do not form trees"));
+      }
+      parent[c] = k;
+    }
+  }
+  // A cycle: walking up from a node comes back to it. Each walk stops at a node already cleared.
+  std::vector<std::uint8_t> state(count, 0);  // 0 unvisited, 1 on the current walk, 2 cleared
+  for (std::size_t k = 0; k < count; ++k) {
+    std::size_t v = k;
+    while (v != none && state[v] == 0) {
+      state[v] = 1;
+      v = parent[v];
+    }
+    if (v != none && state[v] == 1) {
+      reader.fail(detail::message(node_name(model, v), " is its own ancestor (a cycle in the node hierarchy)"));
+    }
+    for (v = k; v != none && state[v] == 1; v = parent[v]) state[v] = 2;
+  }
+  std::vector<std::size_t> roots;
+  if (!model.scenes.empty()) {
+    const std::size_t scene = model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size()
+                                  ? static_cast<std::size_t>(model.defaultScene)
+                                  : 0;
+    std::vector<bool> listed(count, false);
+    for (const int root : model.scenes[scene].nodes) {
+      if (root < 0 || static_cast<std::size_t>(root) >= count) {
+        reader.fail(detail::message("scene ", scene, ": node ", root, " does not exist"));
+      }
+      const auto r = static_cast<std::size_t>(root);
+      if (parent[r] != none) {
+        reader.fail(detail::message("scene ", scene, " lists ", node_name(model, r), ", a child of node ", parent[r],
+                                    ", as a root"));
+      }
+      if (listed[r]) reader.fail(detail::message("scene ", scene, " lists ", node_name(model, r), " twice"));
+      listed[r] = true;
+      roots.push_back(r);
+    }
+  } else {
+    for (std::size_t k = 0; k < count; ++k) {
+      if (parent[k] == none) roots.push_back(k);
+    }
+  }
+  std::vector<Affine> instances;
+  std::vector<std::pair<std::size_t, Affine>> stack;
+  for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.emplace_back(*root, Affine::Identity());
+  while (!stack.empty()) {
+    const auto [k, above] = stack.back();
+    stack.pop_back();
+    const Affine world = above * local_transform(model, k, reader);
+    const double det = world.linear().determinant();
+    if (!(det != 0) || !std::isfinite(det)) {
+      reader.fail(detail::message(node_name(model, k), ": transform composed with its ancestors' is singular (determinant ",
+                                  det, ")"));
+    }
+    const tinygltf::Node& node = model.nodes[k];
+    if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) >= model.meshes.size()) {
+      reader.fail(detail::message(node_name(model, k), ": mesh ", node.mesh, " does not exist"));
+    }
+    if (node.mesh == 0) instances.push_back(world);
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+      stack.emplace_back(static_cast<std::size_t>(*child), world);
+    }
+  }
+  if (instances.empty()) reader.fail("no node of the scene holds the mesh");
+  return instances;
+}
+
+// The mesh `local` (glTF's axes) placed once per transform, then turned Z-up when `z_up` is set:
+// positions by the transform; normals by the inverse transpose of its linear part and tangents
+// by the linear part, both renormalised (unless the linear part is the identity); where the determinant is negative (a mirror) every
+// triangle's last two corners swap, keeping the winding, and tangent w flips (the bitangent
+// n x t w is mirrored too).
+RenderMesh instanced(const RenderMesh& local, const std::vector<Affine>& instances, bool z_up, const AccessorReader& reader) {
+  const std::size_t n = local.vertex_count();
+  if (n * instances.size() > detail::max_mesh_vertices) {
+    reader.fail(detail::message(instances.size(), " instances of ", n, " vertices exceed 32-bit ids"));
+  }
+  RenderMesh mesh;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const Affine& transform = instances[i];
+    const Eigen::Matrix3d normal_map = transform.linear().inverse().transpose();
+    const bool mirror = transform.linear().determinant() < 0;
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    // Without a linear part, directions stay exactly as read (and renormalised by read_direction).
+    const bool moves_directions = transform.linear() != Eigen::Matrix3d::Identity();
+    const auto direction = [&](const Vec3& d, const char* what, std::size_t v) {
+      const Vec3 mapped = moves_directions ? d.normalized() : d;
+      if (!mapped.allFinite() || mapped == Vec3::Zero()) {
+        reader.fail(detail::message(what, " of vertex ", v, " is degenerate after its node's transform"));
+      }
+      return from_gltf_axes(mapped, z_up);
+    };
+    for (std::size_t v = 0; v < n; ++v) {
+      const Vec3 p = transform * local.positions[v];
+      if (!p.allFinite()) reader.fail(detail::message("POSITION of vertex ", v, " is not finite after its node's transform"));
+      mesh.positions.push_back(from_gltf_axes(p, z_up));
+    }
+    for (std::size_t v = 0; v < local.normals.size(); ++v) {
+      mesh.normals.push_back(direction(normal_map * local.normals[v], "NORMAL", v));
+    }
+    mesh.uvs.insert(mesh.uvs.end(), local.uvs.begin(), local.uvs.end());
+    for (std::size_t v = 0; v < local.tangents.size(); ++v) {
+      const Vec4& t = local.tangents[v];
+      Vec4 tangent;
+      tangent << direction(transform.linear() * t.head<3>(), "TANGENT", v), mirror ? -t.w() : t.w();
+      mesh.tangents.push_back(tangent);
+    }
+    for (std::size_t k = 0; k < local.indices.size(); k += 3) {
+      const std::uint32_t a = local.indices[k], b = local.indices[k + 1], c = local.indices[k + 2];
+      for (const std::uint32_t corner : {a, mirror ? c : b, mirror ? b : c}) mesh.indices.push_back(base + corner);
+    }
+  }
+  return mesh;
 }
 
 }  // namespace
@@ -553,6 +739,7 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
   };
   if (attribute("POSITION") < 0) reader.fail("the primitive has no POSITION");
 
+  // The primitive as stored, in glTF's axes; placed by the scene's nodes at the end.
   RenderMesh mesh;
   const std::vector<double> xyz = reader.values(attribute("POSITION"), 3, Components::floats, "POSITION");
   const std::size_t n = reader.count(attribute("POSITION"));
@@ -566,12 +753,12 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
   };
   mesh.positions.reserve(n);
   for (std::size_t v = 0; v < n; ++v) {
-    mesh.positions.push_back(from_gltf_axes(Vec3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]), z_up));
+    mesh.positions.emplace_back(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
     if (!mesh.positions.back().allFinite()) reader.fail(detail::message("POSITION of vertex ", v, " is not finite"));
   }
   if (attribute("NORMAL") >= 0) {
     const std::vector<double> values = per_vertex("NORMAL", 3, Components::floats);
-    for (std::size_t v = 0; v < n; ++v) mesh.normals.push_back(read_direction(&values[3 * v], z_up, reader, "NORMAL", v));
+    for (std::size_t v = 0; v < n; ++v) mesh.normals.push_back(read_direction(&values[3 * v], reader, "NORMAL", v));
   }
   if (attribute("TEXCOORD_0") >= 0) {
     const std::vector<double> values = per_vertex("TEXCOORD_0", 2, Components::texcoords);
@@ -586,7 +773,7 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
       const double w = values[4 * v + 3];
       if (w != 1.0 && w != -1.0) reader.fail(detail::message("TANGENT of vertex ", v, " has w = ", w, ", not +1 or -1"));
       Vec4 tangent;
-      tangent << read_direction(&values[4 * v], z_up, reader, "TANGENT", v), w;
+      tangent << read_direction(&values[4 * v], reader, "TANGENT", v), w;
       mesh.tangents.push_back(tangent);
     }
   }
@@ -605,6 +792,7 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
     mesh.indices.resize(n);
     std::iota(mesh.indices.begin(), mesh.indices.end(), 0u);
   }
+  mesh = instanced(mesh, mesh_instances(model, reader), z_up, reader);
   mesh.position_ids = weld_equal_positions(mesh.positions);
   try {
     validate(mesh);  // every condition was checked above; this keeps the reader honest

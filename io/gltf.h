@@ -94,15 +94,22 @@ void write_gltf_levels(const std::filesystem::path& path, std::span<const Render
 /// unsigned byte/short/int or none (then vertices 0 1 2, 3 4 5, ...). Positions, normals and
 /// tangents are converted back to Z-up when `z_up` is set. Normals and tangents more than 1e-6
 /// from unit length are renormalised. position_ids weld vertices with equal positions (equal
-/// floats; -0 equals +0): a vertex's id is the first vertex with its position. Node transforms,
-/// materials and other attributes are not read. `path` names the file in messages, and its folder
+/// floats; -0 equals +0): a vertex's id is the first vertex with its position. The mesh is placed
+/// by the scene graph (docs/io.md "Node transforms"): once per node holding it in the default
+/// scene (scene 0 if none is named; without scenes, under every node that is no node's child;
+/// without nodes, once as stored), each node's matrix or T * R * S composed down the hierarchy, in
+/// glTF's axes before the Z-up map; normals by the inverse transpose, renormalised; a negative
+/// determinant swaps each triangle's last two corners and flips tangent w. Materials and other
+/// attributes are not read. `path` names the file in messages, and its folder
 /// is where buffers (and images) in other files are read: a URI is a data: URI or a relative path
 /// (percent-decoded, as tinygltf decodes it) to a regular file inside that folder, with no ".."
 /// and no symbolic link leading out of it.
 /// \throws ParseError naming `path` if the bytes are no such glTF (a required extension, sparse
 ///         accessors, values that are not finite, a zero normal, tangent w other than +-1, an
 ///         index out of range, data outside its buffer, a buffer file that cannot be read, a
-///         buffer or image URI naming a file outside the folder, naming the URI).
+///         buffer or image URI naming a file outside the folder, naming the URI; a node hierarchy
+///         with a cycle or a node with two parents, a singular or non-affine transform, a
+///         non-finite one, a zero quaternion, naming the node).
 RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path, bool z_up = true);
 
 /// Reads a .glb or .gltf file as parse_gltf does.

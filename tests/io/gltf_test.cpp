@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -611,6 +612,197 @@ TEST_F(GltfFile, ReadsATrianglePrimitiveWithoutIndices) {
   const fs::path path = edited(triangle, [](json& d) { d["meshes"][0]["primitives"][0].erase("indices"); });
   EXPECT_FALSE(json::parse(read_file(path))["meshes"][0]["primitives"][0].contains("indices"));
   EXPECT_EQ(first_difference(read_gltf(path), rounded(triangle)), "");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Node transforms (glTF 2.0, 3.5): the scene graph placed around the written node
+
+// One triangle (0, 0, 0) (1, 0, 0) (0, 1, 1), its normal (0, -1, 1)/sqrt 2 and tangent (+x, +1):
+// coordinates floats hold, and so does the centre of its box.
+RenderMesh slanted_triangle() {
+  RenderMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 1)};
+  mesh.normals.assign(3, Vec3(0, -1, 1) / std::sqrt(2.0));
+  mesh.tangents.assign(3, Vec4(1, 0, 0, 1));
+  mesh.indices = {0, 1, 2};
+  mesh.position_ids = {0, 1, 2};
+  return mesh;
+}
+
+// The triangle written in glTF's axes (z_up off), its node 0 then placed by `edit`.
+template <class Edit>
+RenderMesh read_placed(const fs::path& path, Edit edit, bool z_up = false) {
+  GltfOptions y_up;
+  y_up.z_up = false;
+  json document = json::parse(format_gltf(slanted_triangle(), GltfFormat::gltf, y_up));
+  edit(document);
+  write_file_atomically(path, document.dump());
+  return read_gltf(path, z_up);
+}
+
+// Node 0 (the written one) made the child of a new node `parent`, the scene's one root.
+void wrap(json& document, json parent) {
+  parent["children"] = {0};
+  document["nodes"].push_back(parent);
+  document["scenes"][0]["nodes"] = {document["nodes"].size() - 1};
+}
+
+std::vector<Vec3> mapped(const std::function<Vec3(const Vec3&)>& f) {
+  std::vector<Vec3> out;
+  for (const Vec3& p : slanted_triangle().positions) out.push_back(f(p));
+  return out;
+}
+
+void expect_directions(const RenderMesh& mesh, const Vec3& normal, const Vec4& tangent) {
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    EXPECT_LT((mesh.normals[v] - normal).norm(), 2e-7) << v << ": " << mesh.normals[v].transpose();
+    EXPECT_LT((mesh.tangents[v].head<3>() - tangent.head<3>()).norm(), 2e-7) << v;
+    EXPECT_EQ(mesh.tangents[v].w(), tangent.w()) << v;
+  }
+}
+
+TEST_F(GltfFile, NodeScaleRotationTranslationAndMatrixArePlacedExactly) {
+  // Scale (2, 3, 4): positions (2x, 3y, 4z); the normal by the inverse transpose,
+  // diag(1/2, 1/3, 1/4) (0, -1, 1) ~ (0, -1/3, 1/4), unit (0, -0.8, 0.6): the normal of the scaled
+  // triangle (2, 0, 0) x (0, 3, 4) = (0, -8, 6).
+  RenderMesh scaled = read_placed(file("scale.gltf"), [](json& d) { wrap(d, {{"scale", {2, 3, 4}}}); });
+  EXPECT_EQ(scaled.positions, mapped([](const Vec3& p) { return Vec3(2 * p.x(), 3 * p.y(), 4 * p.z()); }));
+  expect_directions(scaled, Vec3(0, -0.8, 0.6), Vec4(1, 0, 0, 1));
+  EXPECT_EQ(scaled.indices, (std::vector<std::uint32_t>{0, 1, 2}));
+  // Rotation by 180 degrees about z, quaternion (0, 0, 1, 0): (-x, -y, z), exactly.
+  RenderMesh turned = read_placed(file("turn.gltf"), [](json& d) { wrap(d, {{"rotation", {0, 0, 1, 0}}}); });
+  EXPECT_EQ(turned.positions, mapped([](const Vec3& p) { return Vec3(-p.x(), -p.y(), p.z()); }));
+  expect_directions(turned, Vec3(0, 1, 1) / std::sqrt(2.0), Vec4(-1, 0, 0, 1));
+  // 90 degrees about z, (0, 0, sqrt 1/2, sqrt 1/2): (-y, x, z) to rounding.
+  const double h = std::sqrt(0.5);
+  RenderMesh quarter = read_placed(file("quarter.gltf"), [&](json& d) { wrap(d, {{"rotation", {0, 0, h, h}}}); });
+  const std::vector<Vec3> quarter_expected = mapped([](const Vec3& p) { return Vec3(-p.y(), p.x(), p.z()); });
+  for (std::size_t v = 0; v < 3; ++v) EXPECT_LT((quarter.positions[v] - quarter_expected[v]).norm(), 1e-15) << v;
+  expect_directions(quarter, Vec3(1, 0, 1) / std::sqrt(2.0), Vec4(0, 1, 0, 1));
+  // Translation (10, 20, 30).
+  RenderMesh moved = read_placed(file("move.gltf"), [](json& d) { wrap(d, {{"translation", {10, 20, 30}}}); });
+  EXPECT_EQ(moved.positions, mapped([](const Vec3& p) { return Vec3(p.x() + 10, p.y() + 20, p.z() + 30); }));
+  // A matrix, column-major: (x, y, z) -> (1 - 2 y, 2 + x, 3 + 3 z).
+  const json matrix = {0, 1, 0, 0, -2, 0, 0, 0, 0, 0, 3, 0, 1, 2, 3, 1};
+  RenderMesh affine = read_placed(file("matrix.gltf"), [&](json& d) { wrap(d, {{"matrix", matrix}}); });
+  EXPECT_EQ(affine.positions, mapped([](const Vec3& p) { return Vec3(1 - 2 * p.y(), 2 + p.x(), 3 + 3 * p.z()); }));
+  // Read Z-up, the node's transform acts in glTF's axes first: (X, Y, Z) -> (X, -Z, Y) after it.
+  RenderMesh z_up = read_placed(file("scale_z.gltf"), [](json& d) { wrap(d, {{"scale", {2, 3, 4}}}); }, true);
+  EXPECT_EQ(z_up.positions, mapped([](const Vec3& p) { return Vec3(2 * p.x(), -4 * p.z(), 3 * p.y()); }));
+}
+
+TEST_F(GltfFile, NestedNodesComposeParentTimesChild) {
+  // Root: translation (1, 0, 0) and scale 2; its child: 180 degrees about z; then node 0.
+  // World = T S R: (x, y, z) -> (1 - 2 x, -2 y, 2 z).
+  const RenderMesh mesh = read_placed(file("nested.gltf"), [](json& d) {
+    d["nodes"].push_back({{"rotation", {0, 0, 1, 0}}, {"children", {0}}});
+    d["nodes"].push_back({{"translation", {1, 0, 0}}, {"scale", {2, 2, 2}}, {"children", {1}}});
+    d["scenes"][0]["nodes"] = {2};
+  });
+  EXPECT_EQ(mesh.positions, mapped([](const Vec3& p) { return Vec3(1 - 2 * p.x(), -2 * p.y(), 2 * p.z()); }));
+  // Without a scene, the roots are the nodes that are nobody's child: the same.
+  const RenderMesh sceneless = read_placed(file("sceneless.gltf"), [](json& d) {
+    d["nodes"].push_back({{"rotation", {0, 0, 1, 0}}, {"children", {0}}});
+    d["nodes"].push_back({{"translation", {1, 0, 0}}, {"scale", {2, 2, 2}}, {"children", {1}}});
+    d.erase("scenes");
+    d.erase("scene");
+  });
+  EXPECT_EQ(sceneless.positions, mesh.positions);
+  // The default scene is the one "scene" names.
+  const RenderMesh second = read_placed(file("second.gltf"), [](json& d) {
+    d["nodes"].push_back({{"translation", {0, 0, 7}}, {"children", {0}}});
+    d["scenes"] = {{{"nodes", {0}}}, {{"nodes", {1}}}};
+    d["scene"] = 1;
+  });
+  EXPECT_EQ(second.positions, mapped([](const Vec3& p) { return Vec3(p.x(), p.y(), p.z() + 7); }));
+}
+
+TEST_F(GltfFile, AMeshInTwoNodesAppearsTwice) {
+  const RenderMesh mesh = read_placed(file("twice.gltf"), [](json& d) {
+    const json written = d["nodes"][0];
+    d["nodes"].push_back({{"children", {0}}});                               // 1: identity
+    d["nodes"].push_back(written);                                            // 2: node 0 again
+    d["nodes"].push_back({{"translation", {5, 0, 0}}, {"children", {2}}});  // 3: moves node 2
+    d["scenes"][0]["nodes"] = {1, 3};
+  });
+  std::vector<Vec3> expected = slanted_triangle().positions;
+  for (const Vec3& p : slanted_triangle().positions) expected.push_back(p + Vec3(5, 0, 0));
+  EXPECT_EQ(mesh.positions, expected);
+  EXPECT_EQ(mesh.indices, (std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(mesh.position_ids, (std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(mesh.normals.size(), 6u);
+}
+
+TEST_F(GltfFile, AMirrorFlipsTheWindingAndTheTangentSign) {
+  // Scale (-1, 1, 1): (-x, y, z); the normal (0, -1, 1)/sqrt 2 keeps (its x is 0); the tangent
+  // (1, 0, 0) becomes (-1, 0, 0) and w -1. The triangle's corners 1 and 2 swap, so it still turns
+  // counter-clockwise about its normal.
+  const RenderMesh mesh = read_placed(file("mirror.gltf"), [](json& d) { wrap(d, {{"scale", {-1, 1, 1}}}); });
+  EXPECT_EQ(mesh.positions, mapped([](const Vec3& p) { return Vec3(-p.x(), p.y(), p.z()); }));
+  EXPECT_EQ(mesh.indices, (std::vector<std::uint32_t>{0, 2, 1}));
+  expect_directions(mesh, Vec3(0, -1, 1) / std::sqrt(2.0), Vec4(-1, 0, 0, -1));
+  const Vec3& a = mesh.positions[mesh.indices[0]];
+  const Vec3& b = mesh.positions[mesh.indices[1]];
+  const Vec3& c = mesh.positions[mesh.indices[2]];
+  EXPECT_GT((b - a).cross(c - a).dot(mesh.normals[0]), 0);
+  // A matrix of determinant -1 (x and y swapped) does the same.
+  const RenderMesh swapped = read_placed(file("swap.gltf"), [](json& d) {
+    wrap(d, {{"matrix", {0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});
+  });
+  EXPECT_EQ(swapped.positions, mapped([](const Vec3& p) { return Vec3(p.y(), p.x(), p.z()); }));
+  EXPECT_EQ(swapped.indices, (std::vector<std::uint32_t>{0, 2, 1}));
+  const Vec3& p = swapped.positions[0];
+  const Vec3& q = swapped.positions[2];
+  const Vec3& r = swapped.positions[1];
+  EXPECT_GT((q - p).cross(r - p).dot(swapped.normals[0]), 0);
+}
+
+TEST_F(GltfFile, NodeGraphsThatCannotBeHonouredAreRefusedNamingTheNode) {
+  const auto expect_refused = [&](const std::string& name, const std::function<void(json&)>& edit,
+                                  const std::string& part) {
+    SCOPED_TRACE(name);
+    try {
+      read_placed(file(name), edit);
+      ADD_FAILURE() << "no ParseError";
+    } catch (const ParseError& e) {
+      EXPECT_EQ(e.path(), file(name).string());
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  expect_refused("cycle.gltf", [](json& d) {
+    d["nodes"].push_back({{"name", "a"}, {"children", {2}}});
+    d["nodes"].push_back({{"name", "b"}, {"children", {1}}});
+  }, "node 1 ('a') is its own ancestor (a cycle in the node hierarchy)");
+  expect_refused("self.gltf", [](json& d) { d["nodes"][0]["children"] = {0}; }, "node 0 ('patchwork') is its own ancestor");
+  expect_refused("parents.gltf", [](json& d) {
+    d["nodes"].push_back({{"children", {0}}});
+    d["nodes"].push_back({{"children", {0}}});
+  }, "node 0 ('patchwork') has two parents (1 and 2)");
+  expect_refused("flat.gltf", [](json& d) { wrap(d, {{"name", "flat"}, {"scale", {1, 0, 1}}}); },
+                 "node 1 ('flat'): transform is singular (determinant 0)");
+  expect_refused("zeros.gltf", [](json& d) { wrap(d, {{"matrix", std::vector<double>(16, 0.0)}}); },
+                 "node 1: matrix is not affine");
+  expect_refused("singular.gltf", [](json& d) {
+    wrap(d, {{"matrix", {1, 0, 0, 0, 2, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});  // columns (1, 0, 0) and (2, 0, 0)
+  }, "node 1: transform is singular");
+  expect_refused("tiny.gltf", [](json& d) {
+    // Each determinant 1e-180; composed, 1e-360 underflows to 0.
+    d["nodes"].push_back({{"scale", {1e-60, 1e-60, 1e-60}}, {"children", {0}}});
+    d["nodes"].push_back({{"scale", {1e-60, 1e-60, 1e-60}}, {"children", {1}}});
+    d["scenes"][0]["nodes"] = {2};
+  }, "node 1: transform composed with its ancestors' is singular (determinant 0)");
+  expect_refused("projective.gltf", [](json& d) {
+    wrap(d, {{"matrix", {1, 0, 0, 0.5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});
+  }, "node 1: matrix is not affine");
+  expect_refused("quaternion.gltf", [](json& d) { wrap(d, {{"rotation", {0, 0, 0, 0}}}); },
+                 "node 1: rotation is the zero quaternion");
+  expect_refused("child.gltf", [](json& d) { d["nodes"][0]["children"] = {9}; },
+                 "node 0 ('patchwork'): child 9 does not exist");
+  expect_refused("root.gltf", [](json& d) {
+    wrap(d, json::object());
+    d["scenes"][0]["nodes"] = {1, 0};
+  }, "scene 0 lists node 0 ('patchwork'), a child of node 1, as a root");
+  expect_refused("nomesh.gltf", [](json& d) { d["nodes"][0].erase("mesh"); }, "no node of the scene holds the mesh");
 }
 
 // A buffer in a file of its own: the cube's .glb JSON with buffers[0].uri = `uri`, in folder

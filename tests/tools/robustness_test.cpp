@@ -58,6 +58,17 @@ std::string gltf_buffer_uri(const std::string& uri) {
   return R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" + uri + R"(", "byteLength": 36}]})";
 }
 
+// A glTF document of one triangle, (0, 0, 0) (1, 0, 0) (0, 1, 0) in a data: URI, held by `nodes`
+// (node 0 the root of scene 0).
+std::string gltf_triangle(const std::string& nodes) {
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": )" + nodes +
+         R"(, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],)"
+         R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],)"
+         R"( "bufferViews": [{"buffer": 0, "byteLength": 36}],)"
+         R"( "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)"
+         R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+}
+
 std::vector<BadInput> bad_inputs() {
   const std::string bpt = patch_header + patch_points(16);
   return {
@@ -107,6 +118,10 @@ std::vector<BadInput> bad_inputs() {
        "convert encoded.gltf out.obj"},
       {"glTF", "buffer URI an absolute path", "absolute.gltf", gltf_buffer_uri("/etc/passwd"),
        "convert absolute.gltf out.obj"},
+      {"glTF", "node hierarchy with a cycle", "cycle.gltf",
+       gltf_triangle(R"([{"mesh": 0, "children": [1]}, {"name": "loop", "children": [0]}])"), "convert cycle.gltf out.obj"},
+      {"glTF", "node scale with a zero (a singular transform)", "flat.gltf",
+       gltf_triangle(R"([{"mesh": 0, "scale": [1, 0, 1]}])"), "convert flat.gltf out.obj"},
       // --- geometry and options
       {"mesh", "non-manifold edge (three faces) as a subdivision cage", "book.obj",
        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n", "subdivide book.obj -o out.obj"},
