@@ -113,14 +113,51 @@ std::uint64_t buffer_bytes(const RenderMesh& mesh, std::size_t index_bytes) {
   return total;
 }
 
-// The attribute accessors of the primitive (the indices are added by the caller).
-void add_attributes(GltfBuilder& builder, tinygltf::Primitive& primitive, const RenderMesh& mesh, bool z_up) {
+// Where a mesh's positions are stored from: the centre of their box (in glTF's axes), so that the
+// float offsets are at most half the box's extent and their rounding is relative to it, not to
+// the distance from the origin (see io/gltf.h).
+// \throws InvalidInput naming the first position that does not fit in a float (viewers add the
+// translation in float).
+Vec3 position_origin(const RenderMesh& mesh, bool z_up) {
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 high = -low;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Vec3 p = to_gltf_axes(mesh.positions[v], z_up);
+    for (int c = 0; c < 3; ++c) to_float(p[c], "position", v);
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  return 0.5 * low + 0.5 * high;  // no overflow: the positions fit in a float
+}
+
+// A bound on |fl(f + t) - p| (and on |f + t - p| exactly), for the float offset f = float(d) of
+// d = fl(p - t), one coordinate: the float rounding |f - d|, plus u (|f| + |t| + |d|) twice for
+// the subtraction before it and the reader's addition after it (u = 2^-53, round to nearest), the
+// sum enlarged by 4u for its own roundings.
+double offset_rounding(double f, double d, double t) {
+  constexpr double u = 0x1p-53;
+  return (std::abs(f - d) + 2 * u * (std::abs(f) + std::abs(t) + std::abs(d))) * (1 + 4 * u);
+}
+
+// The attribute accessors of the primitive (the indices are added by the caller), the positions
+// relative to `origin`; returns the largest rounding distance of a position (offset_rounding
+// over the coordinates, its norm enlarged by 8u for the norm's roundings).
+double add_attributes(GltfBuilder& builder, tinygltf::Primitive& primitive, const RenderMesh& mesh, bool z_up,
+                      const Vec3& origin) {
   const std::size_t n = mesh.vertex_count();
   std::vector<float> values;
   values.reserve(4 * n);
+  double rounding = 0;
   for (std::size_t v = 0; v < n; ++v) {
     const Vec3 p = to_gltf_axes(mesh.positions[v], z_up);
-    for (int c = 0; c < 3; ++c) values.push_back(to_float(p[c], "position", v));
+    Vec3 error;
+    for (int c = 0; c < 3; ++c) {
+      const double d = p[c] - origin[c];
+      const float f = to_float(d, "position", v);
+      values.push_back(f);
+      error[c] = offset_rounding(f, d, origin[c]);
+    }
+    rounding = std::max(rounding, error.norm() * (1 + 0x1p-50));
   }
   const int position = builder.add(values, 3, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
   // min/max of the stored floats, as the validator compares them.
@@ -157,6 +194,7 @@ void add_attributes(GltfBuilder& builder, tinygltf::Primitive& primitive, const 
     primitive.attributes["TANGENT"] =
         builder.add(values, 4, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
   }
+  return rounding;
 }
 
 // The default material: light grey, not metallic, half rough.
@@ -577,11 +615,16 @@ RenderMesh instanced(const RenderMesh& local, const std::vector<Affine>& instanc
 }  // namespace
 
 std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOptions& options) {
-  return format_gltf_levels(std::span<const RenderMesh>(&mesh, 1), {}, format, options);
+  return encode_gltf_levels(std::span<const RenderMesh>(&mesh, 1), {}, format, options).bytes;
 }
 
 std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,
                                const GltfOptions& options) {
+  return encode_gltf_levels(levels, coverage, format, options).bytes;
+}
+
+GltfEncoding encode_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,
+                                const GltfOptions& options) {
   if (levels.empty()) throw InvalidInput("format_gltf: no mesh to write");
   if (levels.size() > 1 && coverage.size() != levels.size()) {
     throw InvalidInput(detail::message("format_gltf: ", levels.size(), " levels of detail need as many screen coverages, got ",
@@ -611,6 +654,7 @@ std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<con
     throw InvalidInput(detail::message("format_gltf: the buffer would take ", bytes, " bytes, more than a glTF buffer can hold"));
   }
 
+  GltfEncoding encoding;
   GltfBuilder builder;
   tinygltf::Model& model = builder.model();
   model.asset.version = "2.0";
@@ -624,7 +668,8 @@ std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<con
     tinygltf::Primitive primitive;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     primitive.material = 0;
-    add_attributes(builder, primitive, mesh, options.z_up);
+    const Vec3 origin = position_origin(mesh, options.z_up);
+    encoding.position_rounding.push_back(add_attributes(builder, primitive, mesh, options.z_up, origin));
     // At most 65535 vertices: indices up to 65534, so the restart value 65535 never appears (the
     // same holds for 32 bits: validate() allows at most 2^32 - 2 vertices).
     if (mesh.vertex_count() <= 0xffff) {
@@ -643,6 +688,8 @@ std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<con
     tinygltf::Node node;
     node.name = name;
     node.mesh = static_cast<int>(level);
+    // JSON numbers are doubles: tinygltf writes the shortest form that reads back to the same one.
+    if (origin != Vec3::Zero()) node.translation = {origin.x(), origin.y(), origin.z()};
     model.nodes.push_back(std::move(node));
   }
   if (levels.size() > 1) {
@@ -669,22 +716,23 @@ std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<con
   // Writing to a stream fails only for images, and there are none.
   [[maybe_unused]] const bool written = writer.WriteGltfSceneToStream(&model, out, !binary, binary);
   PATCHWORK_ASSERT(written && out, "tinygltf failed to serialise a model without images");
-  std::string content = std::move(out).str();
-  if (content.size() > 0xffffffffu) {
-    throw InvalidInput(detail::message("format_gltf: the file would take ", content.size(), " bytes, more than 4 GiB"));
+  encoding.bytes = std::move(out).str();
+  if (encoding.bytes.size() > 0xffffffffu) {
+    throw InvalidInput(detail::message("format_gltf: the file would take ", encoding.bytes.size(), " bytes, more than 4 GiB"));
   }
-  return content;
+  return encoding;
 }
 
-void write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options) {
-  const GltfFormat format = gltf_format_of(path);
-  write_file_atomically(path, format_gltf(mesh, format, options));
+double write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options) {
+  return write_gltf_levels(path, std::span<const RenderMesh>(&mesh, 1), {}, options).front();
 }
 
-void write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
-                       std::span<const double> coverage, const GltfOptions& options) {
+std::vector<double> write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
+                                      std::span<const double> coverage, const GltfOptions& options) {
   const GltfFormat format = gltf_format_of(path);
-  write_file_atomically(path, format_gltf_levels(levels, coverage, format, options));
+  GltfEncoding encoding = encode_gltf_levels(levels, coverage, format, options);
+  write_file_atomically(path, encoding.bytes);
+  return std::move(encoding.position_rounding);
 }
 
 RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path, bool z_up) {

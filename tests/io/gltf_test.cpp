@@ -20,6 +20,9 @@
 
 #include "core/errors.h"
 #include "io/atomic_file.h"
+#include "io/bpt.h"
+#include "surfaces/patch_set.h"
+#include "surfaces/tessellator.h"
 
 namespace patchwork {
 namespace {
@@ -124,12 +127,45 @@ RenderMesh grid(std::uint32_t columns, std::uint32_t rows) {
   return mesh;
 }
 
-// What a file written by write_gltf reads back as: every value rounded to float. (The test
+// p in glTF's axes: (x, z, -y) when z_up.
+Vec3 gltf_axes(const Vec3& p, bool z_up = true) { return z_up ? Vec3(p.x(), p.z(), -p.y()) : p; }
+
+// The node translation write_gltf stores positions from: the centre of their box in glTF's axes.
+Vec3 gltf_origin(const RenderMesh& mesh, bool z_up = true) {
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 high = -low;
+  for (const Vec3& p : mesh.positions) {
+    low = low.cwiseMin(gltf_axes(p, z_up));
+    high = high.cwiseMax(gltf_axes(p, z_up));
+  }
+  return 0.5 * low + 0.5 * high;
+}
+
+// The float stored for position p (glTF's axes), relative to the origin t.
+Vec3 stored(const Vec3& p, const Vec3& t, bool z_up = true) {
+  const Vec3 g = gltf_axes(p, z_up);
+  return Vec3(f32(g.x() - t.x()), f32(g.y() - t.y()), f32(g.z() - t.z()));
+}
+
+// What a file written by write_gltf reads back as: every value rounded to float, the positions
+// as the stored float offset plus the node's translation, fl(f + t), back in Z-up. (The test
 // meshes' normals and tangents are axis vectors, which floats hold exactly.)
-RenderMesh rounded(RenderMesh mesh) {
-  for (Vec3& p : mesh.positions) p = Vec3(f32(p.x()), f32(p.y()), f32(p.z()));
+RenderMesh rounded(RenderMesh mesh, bool z_up = true) {
+  const Vec3 t = gltf_origin(mesh, z_up);
+  for (Vec3& p : mesh.positions) {
+    const Vec3 g = stored(p, t, z_up) + t;
+    p = z_up ? Vec3(g.x(), -g.z(), g.y()) : g;
+  }
   for (Vec2& uv : mesh.uvs) uv = Vec2(f32(uv.x()), f32(uv.y()));
   return mesh;
+}
+
+// The node write_gltf writes for `mesh`: its mesh, name, and translation unless it is zero.
+json expected_node(const RenderMesh& mesh, int index, const std::string& name, bool z_up = true) {
+  json node = {{"mesh", index}, {"name", name}};
+  const Vec3 t = gltf_origin(mesh, z_up);
+  if (t != Vec3::Zero()) node["translation"] = {t.x(), t.y(), t.z()};
+  return node;
 }
 
 // Where two meshes first differ, or "" if they are equal in every value.
@@ -205,7 +241,7 @@ void expect_layout(const json& document, const RenderMesh& mesh, std::uint64_t b
   EXPECT_EQ(document["asset"]["generator"], "patchwork");
   EXPECT_EQ(document["scene"], 0);
   EXPECT_EQ(document["scenes"], json::parse(R"([{"nodes": [0]}])"));
-  EXPECT_EQ(document["nodes"], json::parse(R"([{"mesh": 0, "name": "patchwork"}])"));
+  EXPECT_EQ(document["nodes"], json::array({expected_node(mesh, 0, "patchwork")}));
   ASSERT_EQ(document["meshes"].size(), 1u);
   ASSERT_EQ(document["meshes"][0]["primitives"].size(), 1u);
   const json& primitive = document["meshes"][0]["primitives"][0];
@@ -243,15 +279,16 @@ void expect_layout(const json& document, const RenderMesh& mesh, std::uint64_t b
   EXPECT_EQ(accessors[indices]["count"], mesh.indices.size());
   EXPECT_EQ(accessors[indices]["type"], "SCALAR");
 
-  // POSITION min/max: those of the stored floats, (x, y, z) stored as (x, z, -y).
+  // POSITION min/max: those of the stored floats, (x, y, z) stored as (x, z, -y) - t.
   const json& position = accessors[primitive["attributes"]["POSITION"].get<int>()];
   std::vector<double> low(3, std::numeric_limits<double>::infinity());
   std::vector<double> high(3, -std::numeric_limits<double>::infinity());
+  const Vec3 t = gltf_origin(mesh);
   for (const Vec3& p : mesh.positions) {
-    const double stored[3] = {f32(p.x()), f32(p.z()), f32(-p.y())};
+    const Vec3 f = stored(p, t);
     for (int c = 0; c < 3; ++c) {
-      low[c] = std::min(low[c], stored[c]);
-      high[c] = std::max(high[c], stored[c]);
+      low[c] = std::min(low[c], f[c]);
+      high[c] = std::max(high[c], f[c]);
     }
   }
   EXPECT_EQ(position["min"].get<std::vector<double>>(), low);
@@ -330,6 +367,48 @@ TEST_F(GltfFile, CubeReadsBackAsItsFloatRoundedValuesInBothContainers) {
   EXPECT_EQ(entries(), (std::vector<std::string>{"Mixed.GlTf", "UPPER.GLB", "cube.glb", "cube.gltf"}));
 }
 
+TEST_F(GltfFile, MovedTeapotAsWrittenStaysWithinTheReportedBound) {
+  // The teapot moved to (1e5, -2e5, 3e4), tessellated at an absolute tolerance of 0.002. Floats
+  // there are 2^-7 to 2^-6 apart (a rounding of up to 0.0078 per coordinate, four times the
+  // tolerance); offsets from the box's centre (at most ~4 from it) round by about 2.4e-7.
+  const Vec3 shift(1e5, -2e5, 3e4);
+  std::vector<BezierPatch3> patches;
+  for (const BezierPatch3& patch : read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt")) {
+    std::vector<Vec3> points = patch.control_points();
+    for (Vec3& p : points) p += shift;
+    patches.emplace_back(patch.degree_u(), patch.degree_v(), std::move(points));
+  }
+  TessellationOptions options;
+  options.tolerance = 0.002;
+  const Tessellation result = tessellate(PatchSet(std::move(patches)), options);
+  ASSERT_LE(result.error_bound, 0.002);
+  const RenderMesh& mesh = result.mesh;
+  for (const char* name : {"moved.glb", "moved.gltf"}) {
+    SCOPED_TRACE(name);
+    const double rounding = write_gltf(file(name), mesh);
+    // Far below the tolerance: the file's bound, error_bound + rounding, is the tessellator's.
+    EXPECT_LT(rounding, 1e-3 * 0.002);
+    EXPECT_GT(rounding, 0.0);
+    const RenderMesh back = read_gltf(file(name));
+    ASSERT_EQ(back.vertex_count(), mesh.vertex_count());
+    double largest = 0;
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const double distance = (back.positions[v] - mesh.positions[v]).norm();
+      largest = std::max(largest, distance);
+      ASSERT_LE(distance, rounding) << "vertex " << v;
+    }
+    // The bound is not loose by more than a small factor (per-coordinate half-ulps of ~4 in
+    // float, sqrt 3 of them at most).
+    EXPECT_GT(largest, rounding / 4);
+    std::cout << name << ": position rounding bound " << rounding << ", largest " << largest << "\n";
+  }
+  // The translation is kept at full double precision: the box's centre exactly.
+  const json document = parse_glb(read_file(file("moved.glb"))).document;
+  const Vec3 t = gltf_origin(mesh);
+  EXPECT_EQ(document["nodes"][0]["translation"].get<std::vector<double>>(), (std::vector<double>{t.x(), t.y(), t.z()}));
+  EXPECT_NE(t.x(), std::round(t.x())) << "a centre that JSON could hold in few digits would not test this";
+}
+
 TEST(Gltf, GlbChunksAndBufferViewsAreAligned) {
   // 3 u16 indices take 6 bytes, so the buffer ends off the 4-byte grid unless padded.
   RenderMesh odd = open_square();
@@ -356,15 +435,18 @@ TEST(Gltf, GltfEmbedsTheBufferAsADataUri) {
 }
 
 TEST(Gltf, PositionMinMaxAreThoseOfTheStoredFloats) {
-  // Cube corners: x in 0.3 -+ 0.05, y in -0.2 -+ 0.05, z in 0.7 -+ 0.05; glTF (x, z, -y).
+  // Cube corners: x in 0.3 -+ 0.05, y in -0.2 -+ 0.05, z in 0.7 -+ 0.05; glTF (x, z, -y), less
+  // the box's centre t.
   const json document = parse_glb(format_gltf(cube(), GltfFormat::glb)).document;
   const json& position = document["accessors"][document["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()];
-  const std::vector<double> low = {f32(0.3 - 0.05), f32(0.7 - 0.05), f32(0.2 - 0.05)};
-  const std::vector<double> high = {f32(0.3 + 0.05), f32(0.7 + 0.05), f32(0.2 + 0.05)};
+  const Vec3 t = 0.5 * Vec3(0.3 - 0.05, 0.7 - 0.05, 0.2 - 0.05) + 0.5 * Vec3(0.3 + 0.05, 0.7 + 0.05, 0.2 + 0.05);
+  EXPECT_EQ(document["nodes"][0]["translation"].get<std::vector<double>>(), (std::vector<double>{t.x(), t.y(), t.z()}));
+  const std::vector<double> low = {f32(0.3 - 0.05 - t.x()), f32(0.7 - 0.05 - t.y()), f32(0.2 - 0.05 - t.z())};
+  const std::vector<double> high = {f32(0.3 + 0.05 - t.x()), f32(0.7 + 0.05 - t.y()), f32(0.2 + 0.05 - t.z())};
   EXPECT_EQ(position["min"].get<std::vector<double>>(), low);
   EXPECT_EQ(position["max"].get<std::vector<double>>(), high);
   // ... which are not the doubles' min/max.
-  EXPECT_NE(position["max"][0].get<double>(), 0.3 + 0.05);
+  EXPECT_NE(position["max"][0].get<double>(), 0.05);
 }
 
 TEST(Gltf, IndicesAreUnsignedShortUpTo65535VerticesElseUnsignedInt) {
@@ -410,7 +492,9 @@ TEST(Gltf, SceneAndMaterialAreTheDefaults) {
   GltfOptions options;
   options.name = "teapot";
   const json document = json::parse(format_gltf(open_square(), GltfFormat::gltf, options));
-  EXPECT_EQ(document["nodes"], json::parse(R"([{"mesh": 0, "name": "teapot"}])"));
+  // The open square (0..1, 0..1, 0.25) is (0..1, 0.25, -1..0) in glTF's axes, centred at
+  // (0.5, 0.25, -0.5).
+  EXPECT_EQ(document["nodes"], json::parse(R"([{"mesh": 0, "name": "teapot", "translation": [0.5, 0.25, -0.5]}])"));
   EXPECT_EQ(document["meshes"][0]["name"], "teapot");
   ASSERT_EQ(document["materials"].size(), 1u);
   const json& pbr = document["materials"][0]["pbrMetallicRoughness"];
@@ -432,8 +516,8 @@ TEST(Gltf, LevelsOfDetailAreNodesNamedByTheFirstNodesMsftLod) {
   ASSERT_EQ(document["nodes"].size(), 3u);
   EXPECT_EQ(document["nodes"][0]["extensions"]["MSFT_lod"]["ids"], json::parse("[1, 2]"));
   EXPECT_EQ(document["nodes"][0]["extras"]["MSFT_screencoverage"], json::parse("[0.5, 0.125, 0.0]"));
-  EXPECT_EQ(document["nodes"][1], json::parse(R"({"mesh": 1, "name": "teapot_lod1"})"));
-  EXPECT_EQ(document["nodes"][2], json::parse(R"({"mesh": 2, "name": "teapot_lod2"})"));
+  EXPECT_EQ(document["nodes"][1], expected_node(levels[1], 1, "teapot_lod1"));
+  EXPECT_EQ(document["nodes"][2], expected_node(levels[2], 2, "teapot_lod2"));
   ASSERT_EQ(document["meshes"].size(), 3u);
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const json& primitive = document["meshes"][level]["primitives"][0];
@@ -465,7 +549,8 @@ TEST(Gltf, ZUpIsWrittenAsYUpKeepingTheWinding) {
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     SCOPED_TRACE(v);
     const Vec3& p = mesh.positions[v];
-    EXPECT_EQ(raw.positions[v], Vec3(f32(p.x()), f32(p.z()), f32(-p.y())));
+    const Vec3 origin = gltf_origin(mesh);
+    EXPECT_EQ(raw.positions[v], stored(p, origin) + origin);
     const Vec3& n = mesh.normals[v];
     EXPECT_EQ(raw.normals[v], Vec3(n.x(), n.z(), -n.y()));
     const Vec4& t = mesh.tangents[v];
@@ -482,7 +567,7 @@ TEST(Gltf, ZUpIsWrittenAsYUpKeepingTheWinding) {
   GltfOptions y_up;
   y_up.z_up = false;
   const RenderMesh same = parse_gltf(format_gltf(mesh, GltfFormat::glb, y_up), "cube.glb", false);
-  EXPECT_EQ(first_difference(same, rounded(mesh)), "");
+  EXPECT_EQ(first_difference(same, rounded(mesh, false)), "");
 }
 
 TEST(Gltf, NormalsAndTangentsAreUnitAsStoredFloats) {
