@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string>
 
+#include "io/bpt.h"
 #include "io/gltf.h"
 #include "io/mesh_file.h"
 #include "meshes/topology.h"
@@ -73,7 +74,7 @@ TEST(Cli, TessellatePrintsExactlyThePromisedJsonAndWritesValidGltf) {
   std::set<std::string> keys;
   for (const auto& [key, value] : summary.items()) keys.insert(key);
   EXPECT_EQ(keys, (std::set<std::string>{"patches", "triangles", "vertices", "seconds", "tolerance", "error_bound",
-                                         "measured_error", "culled_patches"}));
+                                         "file_error_bound", "measured_error", "culled_patches"}));
   EXPECT_EQ(summary["patches"], 32);
   EXPECT_LE(summary["measured_error"].get<double>(), summary["error_bound"].get<double>());
   EXPECT_LE(summary["error_bound"].get<double>(), summary["tolerance"].get<double>());
@@ -90,6 +91,58 @@ TEST(Cli, TessellatePrintsExactlyThePromisedJsonAndWritesValidGltf) {
     const CliRun other = patchwork(folder, "tessellate " + teapot + " -o " + quote(gltf.string()) + " " + options);
     ASSERT_EQ(other.exit_code, 0) << options << ": " << other.err;
     EXPECT_TRUE(validates(gltf)) << options;
+  }
+}
+
+TEST(Cli, TessellateReportsTheBoundOfTheFileAsWritten) {
+  // The teapot moved to (1e5, -2e5, 3e4), at an absolute tolerance of 0.002: as plain floats the
+  // positions would round by up to 0.0087, four times the tolerance. The file's bound adds the
+  // (tiny) rounding of positions stored from the box's centre, and every vertex read back is
+  // within it of the vertex the tessellator computed.
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  std::vector<BezierPatch3> patches;
+  for (const BezierPatch3& patch : read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt")) {
+    std::vector<Vec3> points = patch.control_points();
+    for (Vec3& p : points) p += Vec3(1e5, -2e5, 3e4);
+    patches.emplace_back(patch.degree_u(), patch.degree_v(), std::move(points));
+  }
+  const fs::path moved = folder.path() / "moved.bpt";
+  write_bpt(moved, patches);
+  const fs::path glb = folder.path() / "moved.glb";
+  const fs::path obj = folder.path() / "moved.obj";
+  const CliRun run = patchwork(folder, "tessellate " + quote(moved.string()) + " -o " + quote(glb.string()) +
+                                           " --tolerance 0.002 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json summary = nlohmann::json::parse(run.out);
+  const double bound = summary["error_bound"].get<double>();
+  const double file_bound = summary["file_error_bound"].get<double>();
+  EXPECT_LE(bound, 0.002);
+  EXPECT_GT(file_bound, bound);
+  EXPECT_LT(file_bound - bound, 1e-3 * 0.002);
+  // The same tessellation to OBJ (doubles, exactly): the file's bound is the mesh's.
+  const CliRun to_obj = patchwork(folder, "tessellate " + quote(moved.string()) + " -o " + quote(obj.string()) +
+                                              " --tolerance 0.002 --json");
+  ASSERT_EQ(to_obj.exit_code, 0) << to_obj.err;
+  const nlohmann::json obj_summary = nlohmann::json::parse(to_obj.out);
+  EXPECT_EQ(obj_summary["file_error_bound"].get<double>(), obj_summary["error_bound"].get<double>());
+  EXPECT_EQ(obj_summary["error_bound"].get<double>(), bound);
+  // Every glTF vertex is within the file's rounding of the OBJ's (the same tessellation,
+  // welded): a vertex of the glb at a welded OBJ position, at most file_bound - bound away.
+  const FaceVertexMesh exact = read_mesh(obj);
+  const RenderMesh back = read_gltf(glb);
+  ASSERT_EQ(back.triangle_count(), exact.face_count());
+  double largest = 0;
+  for (std::size_t t = 0; t < back.triangle_count(); ++t) {
+    const auto face = exact.face(t);
+    for (int k = 0; k < 3; ++k) {
+      const double distance = (back.positions[back.indices[3 * t + k]] - exact.position(face[k])).norm();
+      largest = std::max(largest, distance);
+    }
+  }
+  EXPECT_LE(largest, file_bound - bound);
+  EXPECT_GT(largest, 0.0);
+  if (validator_available()) {
+    EXPECT_TRUE(validates(glb));
   }
 }
 
