@@ -203,14 +203,16 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(std::span<const Ve
   };
   std::vector<std::array<std::uint32_t, 3>> triangles;
   triangles.reserve(k - 2);
-  std::uint32_t i = 0;
+  // Starting at corner 1 and moving on after each ear, a convex polygon gives the fan from
+  // corner 0: (0, 1, 2), (0, 2, 3), ... as before.
+  std::uint32_t i = 1;
   std::uint32_t tried = 0;  // corners tried since the last ear
   for (std::uint32_t remaining = k; remaining > 3;) {
     if (is_ear(i)) {
       triangles.push_back({previous[i], i, next[i]});
       next[previous[i]] = next[i];
       previous[next[i]] = previous[i];
-      i = previous[i];  // the corners beside a clipped ear may have become ears
+      i = next[i];
       --remaining;
       tried = 0;
     } else {

@@ -312,6 +312,10 @@ TEST(Triangulate, ConvexPolygonsKeepTheirArea) {
     double area = 0;
     for (const auto& t : triangles) area += newell_normal(std::vector<Vec3>{polygon[t[0]], polygon[t[1]], polygon[t[2]]}).z();
     EXPECT_NEAR(area, polygon_area(polygon), 1e-14 * k) << k;
+    // Exactly the fan from corner 0, as the CLI wrote convex faces before.
+    for (std::uint32_t j = 0; j + 2 < static_cast<std::uint32_t>(k); ++j) {
+      EXPECT_EQ(triangles[j], (std::array<std::uint32_t, 3>{0, j + 1, j + 2})) << k;
+    }
   }
   // A triangle is itself, even a degenerate one.
   const std::vector<Vec3> flat{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
