@@ -953,6 +953,23 @@ TEST_F(GltfFile, BufferUrisAreReadOnlyInsideTheFilesFolder) {
       EXPECT_NE(std::string(e.what()).find(r.reason), std::string::npos) << e.what();
     }
   }
+  // An image file is opened too (though not decoded): its URI is held to the same rule.
+  {
+    json document = external.document;
+    document["buffers"][0]["uri"] = "sub/data.bin";
+    document["images"] = {{{"uri", "../outside/data.bin"}}};
+    const fs::path path = file("inner") / "image.gltf";
+    write_file_atomically(path, document.dump());
+    try {
+      read_gltf(path);
+      ADD_FAILURE() << "no ParseError";
+    } catch (const ParseError& e) {
+      EXPECT_NE(std::string(e.what()).find("'../outside/data.bin'"), std::string::npos) << e.what();
+    }
+    document["images"] = {{{"uri", "sub/data.bin"}}};  // inside: read (and not decoded)
+    write_file_atomically(path, document.dump());
+    EXPECT_EQ(first_difference(read_gltf(path), expected), "");
+  }
   // A .glb whose buffer is an outside file is refused the same way.
   json document = external.document;
   document["buffers"][0]["uri"] = "../outside/data.bin";
