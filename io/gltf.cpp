@@ -662,13 +662,17 @@ GltfEncoding encode_gltf_levels(std::span<const RenderMesh> levels, std::span<co
   // Not value_or: the topology pass runs only when the caller did not say.
   model.materials.push_back(
       default_material(options.double_sided ? *options.double_sided : has_boundary_edge(levels.front())));
+  // Every level is stored from level 0's centre, so that a viewer that places the levels of an
+  // MSFT_lod chain by the first node's transform (or by each node's own) puts them in one place.
+  // Each level's positions must fit in a float (position_origin checks).
+  const Vec3 origin = position_origin(levels.front(), options.z_up);
+  for (const RenderMesh& mesh : levels.subspan(1)) position_origin(mesh, options.z_up);
   // One mesh and one node per level; the scene holds the first node, which names the others.
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const RenderMesh& mesh = levels[level];
     tinygltf::Primitive primitive;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     primitive.material = 0;
-    const Vec3 origin = position_origin(mesh, options.z_up);
     encoding.position_rounding.push_back(add_attributes(builder, primitive, mesh, options.z_up, origin));
     // At most 65535 vertices: indices up to 65534, so the restart value 65535 never appears (the
     // same holds for 32 bits: validate() allows at most 2^32 - 2 vertices).

@@ -81,7 +81,8 @@ std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOpt
 /// hold "MSFT_screencoverage": coverage, one value per level, the screen coverage down to which
 /// that level is meant to be shown (non-increasing, in [0, 1]; the last is where nothing need be
 /// drawn). All levels share material 0 (doubleSided from levels[0] unless given). A client that
-/// knows no MSFT_lod shows levels[0]. One level gives exactly format_gltf's file.
+/// knows no MSFT_lod shows levels[0]. Every level is stored from the centre of levels[0]'s box,
+/// every node's translation. One level gives exactly format_gltf's file.
 /// \throws InvalidInput as format_gltf for any level, for no level, or if more than one level
 ///         comes without exactly one coverage per level or with coverages out of order.
 std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,

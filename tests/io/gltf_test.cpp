@@ -516,8 +516,12 @@ TEST(Gltf, LevelsOfDetailAreNodesNamedByTheFirstNodesMsftLod) {
   ASSERT_EQ(document["nodes"].size(), 3u);
   EXPECT_EQ(document["nodes"][0]["extensions"]["MSFT_lod"]["ids"], json::parse("[1, 2]"));
   EXPECT_EQ(document["nodes"][0]["extras"]["MSFT_screencoverage"], json::parse("[0.5, 0.125, 0.0]"));
-  EXPECT_EQ(document["nodes"][1], expected_node(levels[1], 1, "teapot_lod1"));
-  EXPECT_EQ(document["nodes"][2], expected_node(levels[2], 2, "teapot_lod2"));
+  // Every level stored from level 0's centre: one translation for the whole chain.
+  json lod1 = expected_node(levels[0], 1, "teapot_lod1");
+  json lod2 = expected_node(levels[0], 2, "teapot_lod2");
+  EXPECT_EQ(document["nodes"][1], lod1);
+  EXPECT_EQ(document["nodes"][2], lod2);
+  EXPECT_EQ(document["nodes"][2]["translation"], document["nodes"][0]["translation"]);
   ASSERT_EQ(document["meshes"].size(), 3u);
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const json& primitive = document["meshes"][level]["primitives"][0];
