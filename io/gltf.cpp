@@ -231,9 +231,9 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
 // percent-decodes a buffer's or image's URI and joins it to the folder (then to "."); these
 // callbacks get the joined path, so they judge exactly what it would open.
 struct Confinement {
-  std::string prefix;             // the canonical folder and '/', as tinygltf joins a URI to it
-  std::filesystem::path root;     // the canonical folder
-  std::string refused;            // why the first refused URI was refused; empty if none
+  std::string prefix;          // the canonical folder and '/', as tinygltf joins a URI to it
+  std::filesystem::path root;  // the canonical folder
+  std::string refused;         // why the first refused URI was refused; empty if none
 };
 
 std::string unexpanded(const std::string& path, void*) { return path; }  // no "~" or "$VAR"
@@ -242,12 +242,17 @@ std::string unexpanded(const std::string& path, void*) { return path; }  // no "
 // elsewhere.
 bool confined(const std::string& path, Confinement& confinement) {
   namespace fs = std::filesystem;
+  if (confinement.root.empty()) {  // the folder has no absolute path (no working directory)
+    if (confinement.refused.empty()) confinement.refused = "the folder of the glTF file has no absolute path";
+    return false;
+  }
   if (!path.starts_with(confinement.prefix)) return false;  // tinygltf's second try, relative to "."
   const std::string uri = path.substr(confinement.prefix.size());
   const auto refuse = [&](const std::string& why) {
     if (confinement.refused.empty()) {
-      confinement.refused = detail::message("the file '", uri, "' named by a buffer or image URI (percent-decoded) ", why,
-                                            ": only data: URIs and files inside the folder of the glTF file are read");
+      confinement.refused =
+          detail::message("the file '", uri, "' named by a buffer or image URI (percent-decoded) ", why,
+                          ": only data: URIs and files inside the folder of the glTF file are read");
     }
     return false;
   };
@@ -517,9 +522,10 @@ std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorR
   }
   std::vector<std::size_t> roots;
   if (!model.scenes.empty()) {
-    const std::size_t scene = model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size()
-                                  ? static_cast<std::size_t>(model.defaultScene)
-                                  : 0;
+    const std::size_t scene =
+        model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size()
+            ? static_cast<std::size_t>(model.defaultScene)
+            : 0;
     std::vector<bool> listed(count, false);
     for (const int root : model.scenes[scene].nodes) {
       if (root < 0 || static_cast<std::size_t>(root) >= count) {
@@ -548,8 +554,8 @@ std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorR
     const Affine world = above * local_transform(model, k, reader);
     const double det = world.linear().determinant();
     if (!(det != 0) || !std::isfinite(det)) {
-      reader.fail(detail::message(node_name(model, k), ": transform composed with its ancestors' is singular (determinant ",
-                                  det, ")"));
+      reader.fail(detail::message(node_name(model, k),
+                                  ": transform composed with its ancestors' is singular (determinant ", det, ")"));
     }
     const tinygltf::Node& node = model.nodes[k];
     if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) >= model.meshes.size()) {
@@ -566,10 +572,11 @@ std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorR
 
 // The mesh `local` (glTF's axes) placed once per transform, then turned Z-up when `z_up` is set:
 // positions by the transform; normals by the inverse transpose of its linear part and tangents
-// by the linear part, both renormalised (unless the linear part is the identity); where the determinant is negative (a mirror) every
-// triangle's last two corners swap, keeping the winding, and tangent w flips (the bitangent
-// n x t w is mirrored too).
-RenderMesh instanced(const RenderMesh& local, const std::vector<Affine>& instances, bool z_up, const AccessorReader& reader) {
+// by the linear part, both renormalised (unless the linear part is the identity); where the
+// determinant is negative (a mirror) every triangle's last two corners swap, keeping the
+// winding, and tangent w flips (the bitangent n x t w is mirrored too).
+RenderMesh instanced(const RenderMesh& local, const std::vector<Affine>& instances, bool z_up,
+                     const AccessorReader& reader) {
   const std::size_t n = local.vertex_count();
   if (n * instances.size() > detail::max_mesh_vertices) {
     reader.fail(detail::message(instances.size(), " instances of ", n, " vertices exceed 32-bit ids"));
@@ -591,7 +598,9 @@ RenderMesh instanced(const RenderMesh& local, const std::vector<Affine>& instanc
     };
     for (std::size_t v = 0; v < n; ++v) {
       const Vec3 p = transform * local.positions[v];
-      if (!p.allFinite()) reader.fail(detail::message("POSITION of vertex ", v, " is not finite after its node's transform"));
+      if (!p.allFinite()) {
+        reader.fail(detail::message("POSITION of vertex ", v, " is not finite after its node's transform"));
+      }
       mesh.positions.push_back(from_gltf_axes(p, z_up));
     }
     for (std::size_t v = 0; v < local.normals.size(); ++v) {
@@ -722,7 +731,8 @@ GltfEncoding encode_gltf_levels(std::span<const RenderMesh> levels, std::span<co
   PATCHWORK_ASSERT(written && out, "tinygltf failed to serialise a model without images");
   encoding.bytes = std::move(out).str();
   if (encoding.bytes.size() > 0xffffffffu) {
-    throw InvalidInput(detail::message("format_gltf: the file would take ", encoding.bytes.size(), " bytes, more than 4 GiB"));
+    throw InvalidInput(
+        detail::message("format_gltf: the file would take ", encoding.bytes.size(), " bytes, more than 4 GiB"));
   }
   return encoding;
 }

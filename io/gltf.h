@@ -100,8 +100,8 @@ struct GltfEncoding {
 
 /// The file format_gltf_levels gives, with the rounding of its positions.
 /// \throws InvalidInput as format_gltf_levels.
-GltfEncoding encode_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage,
-                                GltfFormat format, const GltfOptions& options = {});
+GltfEncoding encode_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,
+                                const GltfOptions& options = {});
 
 /// Writes `mesh` as .glb or .gltf, chosen by the extension (compared without regard to case),
 /// atomically (io/atomic_file.h): a failed write leaves no partial file. Returns the bound on the

@@ -173,7 +173,9 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(std::span<const Ve
   const auto k = static_cast<std::uint32_t>(polygon.size());
   if (k == 3) return {{0, 1, 2}};
   const Projection projection = project(polygon);
-  if (projection.collinear) throw InvalidInput("triangulate_polygon: the polygon has zero area (its corners are collinear)");
+  if (projection.collinear) {
+    throw InvalidInput("triangulate_polygon: the polygon has zero area (its corners are collinear)");
+  }
   std::string what;
   if (self_intersects(projection.points, &what)) {
     throw InvalidInput("triangulate_polygon: the polygon is not simple (" + what + ")");
@@ -217,7 +219,9 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(std::span<const Ve
       tried = 0;
     } else {
       // Cannot happen with exact orientation tests; guards against their underflow.
-      if (++tried > remaining) throw NumericalError("triangulate_polygon: no ear found (orientation tests underflowed)");
+      if (++tried > remaining) {
+        throw NumericalError("triangulate_polygon: no ear found (orientation tests underflowed)");
+      }
       i = next[i];
     }
   }
@@ -227,7 +231,9 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(std::span<const Ve
 
 std::vector<std::uint32_t> triangulate_faces(const FaceVertexMesh& mesh) {
   std::vector<std::uint32_t> indices;
-  if (mesh.face_indices().size() >= 2 * mesh.face_count()) indices.reserve(3 * (mesh.face_indices().size() - 2 * mesh.face_count()));
+  if (mesh.face_indices().size() >= 2 * mesh.face_count()) {
+    indices.reserve(3 * (mesh.face_indices().size() - 2 * mesh.face_count()));
+  }
   std::vector<Vec3> corners;
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     const std::span<const std::uint32_t> face = mesh.face(f);
@@ -238,8 +244,8 @@ std::vector<std::uint32_t> triangulate_faces(const FaceVertexMesh& mesh) {
       triangles = triangulate_polygon(corners);
     } catch (const InvalidInput& e) {
       const std::string reason = std::string(e.what()).substr(std::string("triangulate_polygon: ").size());
-      throw InvalidInput(detail::message("triangulate_faces: face ", f, " (", face.size(), " corners) cannot be triangulated: ",
-                                         reason));
+      throw InvalidInput(detail::message("triangulate_faces: face ", f, " (", face.size(),
+                                         " corners) cannot be triangulated: ", reason));
     }
     for (const auto& triangle : triangles) {
       for (const std::uint32_t corner : triangle) indices.push_back(face[corner]);

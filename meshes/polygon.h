@@ -51,7 +51,8 @@ int orientation(std::span<const Vec3> polygon, const Vec3& normal);
 /// (file comment), as corner numbers, each counter-clockwise with respect to the Newell normal
 /// (their Newell normals sum to the polygon's); a triangle (k = 3) is returned as {0, 1, 2}
 /// whatever its shape. A convex polygon gives the fan from corner 0, (0, 1, 2), (0, 2, 3), ...
-/// Collinear corners are allowed; a non-planar polygon is triangulated in its projection. O(k^2) for typical polygons, O(k^3) at worst.
+/// Collinear corners are allowed; a non-planar polygon is triangulated in its projection.
+/// O(k^2) for typical polygons, O(k^3) at worst.
 /// \throws InvalidInput for < 3 points, or for k >= 4 if the projection has zero area or is not
 ///         simple (is_simple: self-intersecting, a repeated corner).
 std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(std::span<const Vec3> polygon);
