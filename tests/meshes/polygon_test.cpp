@@ -328,6 +328,25 @@ TEST(Triangulate, CollinearCornersGiveNoDegenerateTriangle) {
   for (int frame = 0; frame < 6; ++frame) check_triangulation(square, frame);
 }
 
+TEST(Triangulate, NonPlanarPolygonsAreTriangulatedInTheirProjection) {
+  // The L-hexagon with its corners lifted alternately by 0.3: Newell's normal is still mostly +z,
+  // the projection onto xy is the planar L, and the triangles' xy-areas add up to 3 exactly.
+  std::vector<Vec3> lifted{{2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {0, 0, 0}, {2, 0, 0}};
+  for (std::size_t i = 0; i < lifted.size(); i += 2) lifted[i].z() = 0.3;
+  ASSERT_FALSE(is_planar(lifted, 0.1));
+  const auto triangles = triangulate_polygon(lifted);
+  ASSERT_EQ(triangles.size(), 4u);
+  double area = 0;
+  for (const auto& t : triangles) {
+    const double z = newell_normal(std::vector<Vec3>{lifted[t[0]], lifted[t[1]], lifted[t[2]]}).z();
+    EXPECT_GT(z, 0);
+    area += z;
+  }
+  EXPECT_EQ(area, 3.0);
+  // A bow-tie lifted off its plane still crosses itself in projection: refused.
+  EXPECT_THROW(triangulate_polygon(std::vector<Vec3>{{0, 0, 0}, {2, 2, 0.1}, {2, 0, 0}, {0, 1, 0.1}}), InvalidInput);
+}
+
 TEST(Triangulate, RefusesSelfIntersectingAndDegeneratePolygons) {
   const auto expect_refused = [](const std::vector<Vec3>& polygon, const std::string& part) {
     try {
