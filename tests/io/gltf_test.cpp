@@ -23,6 +23,7 @@
 #include "io/bpt.h"
 #include "surfaces/patch_set.h"
 #include "surfaces/tessellator.h"
+#include "tests/support/moved_patches.h"
 
 namespace patchwork {
 namespace {
@@ -372,12 +373,7 @@ TEST_F(GltfFile, MovedTeapotAsWrittenStaysWithinTheReportedBound) {
   // there are 2^-7 to 2^-6 apart (a rounding of up to 0.0078 per coordinate, four times the
   // tolerance); offsets from the box's centre (at most ~4 from it) round by about 2.4e-7.
   const Vec3 shift(1e5, -2e5, 3e4);
-  std::vector<BezierPatch3> patches;
-  for (const BezierPatch3& patch : read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt")) {
-    std::vector<Vec3> points = patch.control_points();
-    for (Vec3& p : points) p += shift;
-    patches.emplace_back(patch.degree_u(), patch.degree_v(), std::move(points));
-  }
+  std::vector<BezierPatch3> patches = testing::moved(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"), shift);
   TessellationOptions options;
   options.tolerance = 0.002;
   const Tessellation result = tessellate(PatchSet(std::move(patches)), options);

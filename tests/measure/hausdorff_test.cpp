@@ -14,6 +14,7 @@
 #include "io/bpt.h"
 #include "io/gltf.h"
 #include "surfaces/tessellator.h"
+#include "tests/support/moved_patches.h"
 
 namespace patchwork {
 namespace {
@@ -234,12 +235,8 @@ TEST(HausdorffDistance, TheMovedTeapotAsWrittenToGltfStaysWithinTheFilesBound) {
   // back from the glb, the mesh is within error_bound + position_rounding of the exact surface;
   // with every position rounded to float where it stands (what the writer used to store), the
   // file was several times the bound away.
-  std::vector<BezierPatch3> patches;
-  for (const BezierPatch3& patch : read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt")) {
-    std::vector<Vec3> points = patch.control_points();
-    for (Vec3& p : points) p += Vec3(1e5, -2e5, 3e4);
-    patches.emplace_back(patch.degree_u(), patch.degree_v(), std::move(points));
-  }
+  const std::vector<BezierPatch3> patches =
+      testing::moved(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"), Vec3(1e5, -2e5, 3e4));
   const PatchSet set(patches);
   TessellationOptions options;
   options.tolerance = 0.002;

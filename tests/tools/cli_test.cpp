@@ -20,6 +20,7 @@
 #include "io/mesh_file.h"
 #include "meshes/topology.h"
 #include "tests/support/temporary_directory.h"
+#include "tests/support/moved_patches.h"
 
 namespace patchwork {
 namespace {
@@ -100,12 +101,8 @@ TEST(Cli, TessellateReportsTheBoundOfTheFileAsWritten) {
   // (tiny) rounding of positions stored from the box's centre, and every vertex read back is
   // within it of the vertex the tessellator computed.
   const testing::TemporaryDirectory folder("patchwork_cli_test");
-  std::vector<BezierPatch3> patches;
-  for (const BezierPatch3& patch : read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt")) {
-    std::vector<Vec3> points = patch.control_points();
-    for (Vec3& p : points) p += Vec3(1e5, -2e5, 3e4);
-    patches.emplace_back(patch.degree_u(), patch.degree_v(), std::move(points));
-  }
+  const std::vector<BezierPatch3> patches =
+      testing::moved(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"), Vec3(1e5, -2e5, 3e4));
   const fs::path moved = folder.path() / "moved.bpt";
   write_bpt(moved, patches);
   const fs::path glb = folder.path() / "moved.glb";
