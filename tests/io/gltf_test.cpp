@@ -296,6 +296,20 @@ void expect_layout(const json& document, const RenderMesh& mesh, std::uint64_t b
   EXPECT_EQ(position["max"].get<std::vector<double>>(), high);
 }
 
+// Reading `path` fails with a ParseError naming it, whose message holds every one of `parts`.
+template <class... Parts>
+void expect_parse_error(const fs::path& path, const Parts&... parts) {
+  try {
+    read_gltf(path);
+    ADD_FAILURE() << "no ParseError for " << path;
+  } catch (const ParseError& e) {
+    EXPECT_EQ(e.path(), path.string());
+    for (const std::string& part : {std::string(parts)...}) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  }
+}
+
 // A test's own folder under the system's temp folder, removed with everything in it.
 class GltfFile : public ::testing::Test {
  protected:
@@ -653,15 +667,6 @@ TEST_F(GltfFile, FailedWritesLeaveNothingBehind) {
 }
 
 TEST_F(GltfFile, ReadErrorsNameTheFile) {
-  const auto expect_parse_error = [](const fs::path& path, const std::string& part) {
-    try {
-      read_gltf(path);
-      ADD_FAILURE() << "no ParseError for " << path;
-    } catch (const ParseError& e) {
-      EXPECT_EQ(e.path(), path.string());
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-    }
-  };
   try {
     read_gltf(file("missing.glb"));
     ADD_FAILURE() << "no IoError";
@@ -714,15 +719,21 @@ RenderMesh slanted_triangle() {
   return mesh;
 }
 
-// The triangle written in glTF's axes (z_up off), its node 0 then placed by `edit`.
+// The triangle written to `path` in glTF's axes (z_up off), its node 0 then placed by `edit`.
 template <class Edit>
-RenderMesh read_placed(const fs::path& path, Edit edit, bool z_up = false) {
+const fs::path& write_placed(const fs::path& path, Edit edit) {
   GltfOptions y_up;
   y_up.z_up = false;
   json document = json::parse(format_gltf(slanted_triangle(), GltfFormat::gltf, y_up));
   edit(document);
   write_file_atomically(path, document.dump());
-  return read_gltf(path, z_up);
+  return path;
+}
+
+// The file write_placed writes, read back (in glTF's axes unless `z_up`).
+template <class Edit>
+RenderMesh read_placed(const fs::path& path, Edit edit, bool z_up = false) {
+  return read_gltf(write_placed(path, edit), z_up);
 }
 
 // Node 0 (the written one) made the child of a new node `parent`, the scene's one root.
@@ -846,13 +857,7 @@ TEST_F(GltfFile, NodeGraphsThatCannotBeHonouredAreRefusedNamingTheNode) {
   const auto expect_refused = [&](const std::string& name, const std::function<void(json&)>& edit,
                                   const std::string& part) {
     SCOPED_TRACE(name);
-    try {
-      read_placed(file(name), edit);
-      ADD_FAILURE() << "no ParseError";
-    } catch (const ParseError& e) {
-      EXPECT_EQ(e.path(), file(name).string());
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-    }
+    expect_parse_error(write_placed(file(name), edit), part);
   };
   expect_refused("cycle.gltf", [](json& d) {
     d["nodes"].push_back({{"name", "a"}, {"children", {2}}});
@@ -943,15 +948,7 @@ TEST_F(GltfFile, BufferUrisAreReadOnlyInsideTheFilesFolder) {
   };
   for (const Refused& r : refused) {
     SCOPED_TRACE(r.uri);
-    const fs::path path = with_uri(r.uri);
-    try {
-      read_gltf(path);
-      ADD_FAILURE() << "no ParseError";
-    } catch (const ParseError& e) {
-      EXPECT_EQ(e.path(), path.string());
-      EXPECT_NE(std::string(e.what()).find("'" + r.decoded + "'"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find(r.reason), std::string::npos) << e.what();
-    }
+    expect_parse_error(with_uri(r.uri), "'" + r.decoded + "'", r.reason);
   }
   // An image file is opened too (though not decoded): its URI is held to the same rule.
   {
@@ -960,12 +957,7 @@ TEST_F(GltfFile, BufferUrisAreReadOnlyInsideTheFilesFolder) {
     document["images"] = {{{"uri", "../outside/data.bin"}}};
     const fs::path path = file("inner") / "image.gltf";
     write_file_atomically(path, document.dump());
-    try {
-      read_gltf(path);
-      ADD_FAILURE() << "no ParseError";
-    } catch (const ParseError& e) {
-      EXPECT_NE(std::string(e.what()).find("'../outside/data.bin'"), std::string::npos) << e.what();
-    }
+    expect_parse_error(path, "'../outside/data.bin'");
     document["images"] = {{{"uri", "sub/data.bin"}}};  // inside: read (and not decoded)
     write_file_atomically(path, document.dump());
     EXPECT_EQ(first_difference(read_gltf(path), expected), "");
@@ -984,12 +976,7 @@ TEST_F(GltfFile, BufferUrisAreReadOnlyInsideTheFilesFolder) {
     const std::uint32_t header[3] = {0x46546C67u, 2u, static_cast<std::uint32_t>(glb.size())};
     std::memcpy(glb.data(), header, sizeof header);
     write_file_atomically(file("inner") / "mesh.glb", glb);
-    try {
-      read_gltf(file("inner") / "mesh.glb");
-      ADD_FAILURE() << "no ParseError";
-    } catch (const ParseError& e) {
-      EXPECT_NE(std::string(e.what()).find("'../outside/data.bin'"), std::string::npos) << e.what();
-    }
+    expect_parse_error(file("inner") / "mesh.glb", "'../outside/data.bin'");
   }
 }
 
