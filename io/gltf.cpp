@@ -5,6 +5,8 @@
 // TINYGLTF_IMPLEMENTATION or any TINYGLTF_NO_* macro, so our view of its classes is the library's.
 #include <tiny_gltf.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -111,14 +113,51 @@ std::uint64_t buffer_bytes(const RenderMesh& mesh, std::size_t index_bytes) {
   return total;
 }
 
-// The attribute accessors of the primitive (the indices are added by the caller).
-void add_attributes(GltfBuilder& builder, tinygltf::Primitive& primitive, const RenderMesh& mesh, bool z_up) {
+// Where a mesh's positions are stored from: the centre of their box (in glTF's axes), so that the
+// float offsets are at most half the box's extent and their rounding is relative to it, not to
+// the distance from the origin (see io/gltf.h).
+// \throws InvalidInput naming the first position that does not fit in a float (viewers add the
+// translation in float).
+Vec3 position_origin(const RenderMesh& mesh, bool z_up) {
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 high = -low;
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Vec3 p = to_gltf_axes(mesh.positions[v], z_up);
+    for (int c = 0; c < 3; ++c) to_float(p[c], "position", v);
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  return 0.5 * low + 0.5 * high;  // no overflow: the positions fit in a float
+}
+
+// A bound on |fl(f + t) - p| (and on |f + t - p| exactly), for the float offset f = float(d) of
+// d = fl(p - t), one coordinate: the float rounding |f - d|, plus u (|f| + |t| + |d|) twice for
+// the subtraction before it and the reader's addition after it (u = 2^-53, round to nearest), the
+// sum enlarged by 4u for its own roundings.
+double offset_rounding(double f, double d, double t) {
+  constexpr double u = 0x1p-53;
+  return (std::abs(f - d) + 2 * u * (std::abs(f) + std::abs(t) + std::abs(d))) * (1 + 4 * u);
+}
+
+// The attribute accessors of the primitive (the indices are added by the caller), the positions
+// relative to `origin`; returns the largest rounding distance of a position (offset_rounding
+// over the coordinates, its norm enlarged by 8u for the norm's roundings).
+double add_attributes(GltfBuilder& builder, tinygltf::Primitive& primitive, const RenderMesh& mesh, bool z_up,
+                      const Vec3& origin) {
   const std::size_t n = mesh.vertex_count();
   std::vector<float> values;
   values.reserve(4 * n);
+  double rounding = 0;
   for (std::size_t v = 0; v < n; ++v) {
     const Vec3 p = to_gltf_axes(mesh.positions[v], z_up);
-    for (int c = 0; c < 3; ++c) values.push_back(to_float(p[c], "position", v));
+    Vec3 error;
+    for (int c = 0; c < 3; ++c) {
+      const double d = p[c] - origin[c];
+      const float f = to_float(d, "position", v);
+      values.push_back(f);
+      error[c] = offset_rounding(f, d, origin[c]);
+    }
+    rounding = std::max(rounding, error.norm() * (1 + 0x1p-50));
   }
   const int position = builder.add(values, 3, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
   // min/max of the stored floats, as the validator compares them.
@@ -155,6 +194,7 @@ void add_attributes(GltfBuilder& builder, tinygltf::Primitive& primitive, const 
     primitive.attributes["TANGENT"] =
         builder.add(values, 4, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
   }
+  return rounding;
 }
 
 // The default material: light grey, not metallic, half rough.
@@ -185,6 +225,74 @@ GltfFormat gltf_format_of(const std::filesystem::path& path) {
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
 }
+
+// The file system tinygltf sees while loading: only regular files inside the folder of the glTF
+// file, named by relative paths without "..", whatever symbolic links they pass through. tinygltf
+// percent-decodes a buffer's or image's URI and joins it to the folder (then to "."); these
+// callbacks get the joined path, so they judge exactly what it would open.
+struct Confinement {
+  std::string prefix;          // the canonical folder and '/', as tinygltf joins a URI to it
+  std::filesystem::path root;  // the canonical folder
+  std::string refused;         // why the first refused URI was refused; empty if none
+};
+
+std::string unexpanded(const std::string& path, void*) { return path; }  // no "~" or "$VAR"
+
+// Whether `path` is a regular file inside the folder; records why not when a URI names a file
+// elsewhere.
+bool confined(const std::string& path, Confinement& confinement) {
+  namespace fs = std::filesystem;
+  if (confinement.root.empty()) {  // the folder has no absolute path (no working directory)
+    if (confinement.refused.empty()) confinement.refused = "the folder of the glTF file has no absolute path";
+    return false;
+  }
+  if (!path.starts_with(confinement.prefix)) return false;  // tinygltf's second try, relative to "."
+  const std::string uri = path.substr(confinement.prefix.size());
+  const auto refuse = [&](const std::string& why) {
+    if (confinement.refused.empty()) {
+      confinement.refused =
+          detail::message("the file '", uri, "' named by a buffer or image URI (percent-decoded) ", why,
+                          ": only data: URIs and files inside the folder of the glTF file are read");
+    }
+    return false;
+  };
+  if (uri.empty()) return false;
+  const fs::path relative(uri);
+  if (relative.is_absolute()) return refuse("is an absolute path");
+  for (const fs::path& part : relative) {
+    if (part == "..") return refuse("goes up out of the folder with '..'");
+  }
+  std::error_code error;
+  const fs::path resolved = fs::weakly_canonical(fs::path(path), error);
+  if (error) return false;
+  const auto [in_root, in_resolved] =
+      std::mismatch(confinement.root.begin(), confinement.root.end(), resolved.begin(), resolved.end());
+  if (in_root != confinement.root.end()) {
+    return refuse("leads out of the folder through a symbolic link, to " + resolved.string());
+  }
+  return fs::is_regular_file(resolved, error);
+}
+
+bool confined_exists(const std::string& path, void* confinement) {
+  return confined(path, *static_cast<Confinement*>(confinement));
+}
+
+bool confined_read(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* confinement) {
+  if (!confined(path, *static_cast<Confinement*>(confinement))) {
+    *error = "not a file inside the folder of the glTF file";
+    return false;
+  }
+  try {
+    const std::string bytes = read_file(path);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const IoError& e) {
+    *error = e.what();
+    return false;
+  }
+}
+
+bool refuse_write(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
 // What an accessor may hold.
 enum class Components {
@@ -295,9 +403,9 @@ class AccessorReader {
   std::string name_;
 };
 
-// A direction read from a file: back to Z-up, renormalised if more than 1e-6 from unit length.
-Vec3 read_direction(const double* xyz, bool z_up, const AccessorReader& reader, const char* what, std::size_t v) {
-  Vec3 d = from_gltf_axes(Vec3(xyz[0], xyz[1], xyz[2]), z_up);
+// A direction read from a file, renormalised if more than 1e-6 from unit length.
+Vec3 read_direction(const double* xyz, const AccessorReader& reader, const char* what, std::size_t v) {
+  Vec3 d(xyz[0], xyz[1], xyz[2]);
   if (!d.allFinite()) reader.fail(detail::message(what, " of vertex ", v, " is not finite"));
   const double length = d.norm();
   if (length == 0) reader.fail(detail::message(what, " of vertex ", v, " is zero"));
@@ -325,14 +433,207 @@ std::vector<std::uint32_t> weld_equal_positions(const std::vector<Vec3>& positio
   return ids;
 }
 
+// ---------------------------------------------------------------------------------------------
+// The scene graph (glTF 2.0, 3.5 "Nodes and Hierarchy")
+
+using Affine = Eigen::Transform<double, 3, Eigen::Affine>;
+
+// "node 3" or "node 3 ('lid')", for messages.
+std::string node_name(const tinygltf::Model& model, std::size_t k) {
+  const std::string& name = model.nodes[k].name;
+  return name.empty() ? detail::message("node ", k) : detail::message("node ", k, " ('", name, "')");
+}
+
+// Node k's local transform: its matrix (column-major), or T * R * S from translation, rotation
+// (a quaternion x, y, z, w, normalised here) and scale, each the identity when absent.
+Affine local_transform(const tinygltf::Model& model, std::size_t k, const AccessorReader& reader) {
+  const tinygltf::Node& node = model.nodes[k];
+  const auto fail = [&](const std::string& what) { reader.fail(node_name(model, k) + ": " + what); };
+  const auto finite = [](const std::vector<double>& values) {
+    return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+  };
+  Affine transform = Affine::Identity();
+  if (!node.matrix.empty()) {
+    if (node.matrix.size() != 16 || !finite(node.matrix)) fail("matrix is not 16 finite numbers");
+    Eigen::Matrix4d m;
+    for (int column = 0; column < 4; ++column) {
+      for (int row = 0; row < 4; ++row) m(row, column) = node.matrix[static_cast<std::size_t>(4 * column + row)];
+    }
+    if (m.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) fail("matrix is not affine (its last row is not 0 0 0 1)");
+    transform.matrix() = m;
+  } else {
+    if (!node.translation.empty() && (node.translation.size() != 3 || !finite(node.translation))) {
+      fail("translation is not 3 finite numbers");
+    }
+    if (!node.rotation.empty() && (node.rotation.size() != 4 || !finite(node.rotation))) {
+      fail("rotation is not 4 finite numbers");
+    }
+    if (!node.scale.empty() && (node.scale.size() != 3 || !finite(node.scale))) fail("scale is not 3 finite numbers");
+    Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();
+    if (!node.rotation.empty()) {
+      const Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+      if (!(q.norm() > 0)) fail("rotation is the zero quaternion");
+      linear = q.normalized().toRotationMatrix();
+    }
+    if (!node.scale.empty()) linear = linear * Vec3(node.scale[0], node.scale[1], node.scale[2]).asDiagonal();
+    transform.linear() = linear;
+    if (!node.translation.empty()) {
+      transform.translation() = Vec3(node.translation[0], node.translation[1], node.translation[2]);
+    }
+  }
+  const double det = transform.linear().determinant();
+  if (!(det != 0) || !std::isfinite(det)) fail(detail::message("transform is singular (determinant ", det, ")"));
+  return transform;
+}
+
+// The world transform of every node holding mesh 0, in the order a depth-first walk of the
+// scene meets them: the roots of the default scene (scene 0 if none is named), or, without
+// scenes, every node that is no node's child. Without nodes, the mesh once as it is.
+std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorReader& reader) {
+  const std::size_t count = model.nodes.size();
+  if (count == 0) return {Affine::Identity()};
+  constexpr std::size_t none = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> parent(count, none);
+  for (std::size_t k = 0; k < count; ++k) {
+    for (const int child : model.nodes[k].children) {
+      if (child < 0 || static_cast<std::size_t>(child) >= count) {
+        reader.fail(detail::message(node_name(model, k), ": child ", child, " does not exist"));
+      }
+      const auto c = static_cast<std::size_t>(child);
+      if (parent[c] != none) {
+        reader.fail(detail::message(node_name(model, c), " has two parents (", parent[c], " and ", k,
+                                    "): the nodes do not form trees"));
+      }
+      parent[c] = k;
+    }
+  }
+  // A cycle: walking up from a node comes back to it. Each walk stops at a node already cleared.
+  std::vector<std::uint8_t> state(count, 0);  // 0 unvisited, 1 on the current walk, 2 cleared
+  for (std::size_t k = 0; k < count; ++k) {
+    std::size_t v = k;
+    while (v != none && state[v] == 0) {
+      state[v] = 1;
+      v = parent[v];
+    }
+    if (v != none && state[v] == 1) {
+      reader.fail(detail::message(node_name(model, v), " is its own ancestor (a cycle in the node hierarchy)"));
+    }
+    for (v = k; v != none && state[v] == 1; v = parent[v]) state[v] = 2;
+  }
+  std::vector<std::size_t> roots;
+  if (!model.scenes.empty()) {
+    const std::size_t scene =
+        model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size()
+            ? static_cast<std::size_t>(model.defaultScene)
+            : 0;
+    std::vector<bool> listed(count, false);
+    for (const int root : model.scenes[scene].nodes) {
+      if (root < 0 || static_cast<std::size_t>(root) >= count) {
+        reader.fail(detail::message("scene ", scene, ": node ", root, " does not exist"));
+      }
+      const auto r = static_cast<std::size_t>(root);
+      if (parent[r] != none) {
+        reader.fail(detail::message("scene ", scene, " lists ", node_name(model, r), ", a child of node ", parent[r],
+                                    ", as a root"));
+      }
+      if (listed[r]) reader.fail(detail::message("scene ", scene, " lists ", node_name(model, r), " twice"));
+      listed[r] = true;
+      roots.push_back(r);
+    }
+  } else {
+    for (std::size_t k = 0; k < count; ++k) {
+      if (parent[k] == none) roots.push_back(k);
+    }
+  }
+  std::vector<Affine> instances;
+  std::vector<std::pair<std::size_t, Affine>> stack;
+  for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.emplace_back(*root, Affine::Identity());
+  while (!stack.empty()) {
+    const auto [k, above] = stack.back();
+    stack.pop_back();
+    const Affine world = above * local_transform(model, k, reader);
+    const double det = world.linear().determinant();
+    if (!(det != 0) || !std::isfinite(det)) {
+      reader.fail(detail::message(node_name(model, k),
+                                  ": transform composed with its ancestors' is singular (determinant ", det, ")"));
+    }
+    const tinygltf::Node& node = model.nodes[k];
+    if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) >= model.meshes.size()) {
+      reader.fail(detail::message(node_name(model, k), ": mesh ", node.mesh, " does not exist"));
+    }
+    if (node.mesh == 0) instances.push_back(world);
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+      stack.emplace_back(static_cast<std::size_t>(*child), world);
+    }
+  }
+  if (instances.empty()) reader.fail("no node of the scene holds the mesh");
+  return instances;
+}
+
+// The mesh `local` (glTF's axes) placed once per transform, then turned Z-up when `z_up` is set:
+// positions by the transform; normals by the inverse transpose of its linear part and tangents
+// by the linear part, both renormalised (unless the linear part is the identity); where the
+// determinant is negative (a mirror) every triangle's last two corners swap, keeping the
+// winding, and tangent w flips (the bitangent n x t w is mirrored too).
+RenderMesh instanced(const RenderMesh& local, const std::vector<Affine>& instances, bool z_up,
+                     const AccessorReader& reader) {
+  const std::size_t n = local.vertex_count();
+  if (n * instances.size() > detail::max_mesh_vertices) {
+    reader.fail(detail::message(instances.size(), " instances of ", n, " vertices exceed 32-bit ids"));
+  }
+  RenderMesh mesh;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const Affine& transform = instances[i];
+    const Eigen::Matrix3d normal_map = transform.linear().inverse().transpose();
+    const bool mirror = transform.linear().determinant() < 0;
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    // Without a linear part, directions stay exactly as read (and renormalised by read_direction).
+    const bool moves_directions = transform.linear() != Eigen::Matrix3d::Identity();
+    const auto direction = [&](const Vec3& d, const char* what, std::size_t v) {
+      const Vec3 mapped = moves_directions ? d.normalized() : d;
+      if (!mapped.allFinite() || mapped == Vec3::Zero()) {
+        reader.fail(detail::message(what, " of vertex ", v, " is degenerate after its node's transform"));
+      }
+      return from_gltf_axes(mapped, z_up);
+    };
+    for (std::size_t v = 0; v < n; ++v) {
+      const Vec3 p = transform * local.positions[v];
+      if (!p.allFinite()) {
+        reader.fail(detail::message("POSITION of vertex ", v, " is not finite after its node's transform"));
+      }
+      mesh.positions.push_back(from_gltf_axes(p, z_up));
+    }
+    for (std::size_t v = 0; v < local.normals.size(); ++v) {
+      mesh.normals.push_back(direction(normal_map * local.normals[v], "NORMAL", v));
+    }
+    mesh.uvs.insert(mesh.uvs.end(), local.uvs.begin(), local.uvs.end());
+    for (std::size_t v = 0; v < local.tangents.size(); ++v) {
+      const Vec4& t = local.tangents[v];
+      Vec4 tangent;
+      tangent << direction(transform.linear() * t.head<3>(), "TANGENT", v), mirror ? -t.w() : t.w();
+      mesh.tangents.push_back(tangent);
+    }
+    for (std::size_t k = 0; k < local.indices.size(); k += 3) {
+      const std::uint32_t a = local.indices[k], b = local.indices[k + 1], c = local.indices[k + 2];
+      for (const std::uint32_t corner : {a, mirror ? c : b, mirror ? b : c}) mesh.indices.push_back(base + corner);
+    }
+  }
+  return mesh;
+}
+
 }  // namespace
 
 std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOptions& options) {
-  return format_gltf_levels(std::span<const RenderMesh>(&mesh, 1), {}, format, options);
+  return encode_gltf_levels(std::span<const RenderMesh>(&mesh, 1), {}, format, options).bytes;
 }
 
 std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,
                                const GltfOptions& options) {
+  return encode_gltf_levels(levels, coverage, format, options).bytes;
+}
+
+GltfEncoding encode_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,
+                                const GltfOptions& options) {
   if (levels.empty()) throw InvalidInput("format_gltf: no mesh to write");
   if (levels.size() > 1 && coverage.size() != levels.size()) {
     throw InvalidInput(detail::message("format_gltf: ", levels.size(), " levels of detail need as many screen coverages, got ",
@@ -362,6 +663,7 @@ std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<con
     throw InvalidInput(detail::message("format_gltf: the buffer would take ", bytes, " bytes, more than a glTF buffer can hold"));
   }
 
+  GltfEncoding encoding;
   GltfBuilder builder;
   tinygltf::Model& model = builder.model();
   model.asset.version = "2.0";
@@ -369,13 +671,18 @@ std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<con
   // Not value_or: the topology pass runs only when the caller did not say.
   model.materials.push_back(
       default_material(options.double_sided ? *options.double_sided : has_boundary_edge(levels.front())));
+  // Every level is stored from level 0's centre, so that a viewer that places the levels of an
+  // MSFT_lod chain by the first node's transform (or by each node's own) puts them in one place.
+  // Each level's positions must fit in a float (position_origin checks).
+  const Vec3 origin = position_origin(levels.front(), options.z_up);
+  for (const RenderMesh& mesh : levels.subspan(1)) position_origin(mesh, options.z_up);
   // One mesh and one node per level; the scene holds the first node, which names the others.
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const RenderMesh& mesh = levels[level];
     tinygltf::Primitive primitive;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     primitive.material = 0;
-    add_attributes(builder, primitive, mesh, options.z_up);
+    encoding.position_rounding.push_back(add_attributes(builder, primitive, mesh, options.z_up, origin));
     // At most 65535 vertices: indices up to 65534, so the restart value 65535 never appears (the
     // same holds for 32 bits: validate() allows at most 2^32 - 2 vertices).
     if (mesh.vertex_count() <= 0xffff) {
@@ -394,6 +701,8 @@ std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<con
     tinygltf::Node node;
     node.name = name;
     node.mesh = static_cast<int>(level);
+    // JSON numbers are doubles: tinygltf writes the shortest form that reads back to the same one.
+    if (origin != Vec3::Zero()) node.translation = {origin.x(), origin.y(), origin.z()};
     model.nodes.push_back(std::move(node));
   }
   if (levels.size() > 1) {
@@ -420,22 +729,24 @@ std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<con
   // Writing to a stream fails only for images, and there are none.
   [[maybe_unused]] const bool written = writer.WriteGltfSceneToStream(&model, out, !binary, binary);
   PATCHWORK_ASSERT(written && out, "tinygltf failed to serialise a model without images");
-  std::string content = std::move(out).str();
-  if (content.size() > 0xffffffffu) {
-    throw InvalidInput(detail::message("format_gltf: the file would take ", content.size(), " bytes, more than 4 GiB"));
+  encoding.bytes = std::move(out).str();
+  if (encoding.bytes.size() > 0xffffffffu) {
+    throw InvalidInput(
+        detail::message("format_gltf: the file would take ", encoding.bytes.size(), " bytes, more than 4 GiB"));
   }
-  return content;
+  return encoding;
 }
 
-void write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options) {
-  const GltfFormat format = gltf_format_of(path);
-  write_file_atomically(path, format_gltf(mesh, format, options));
+double write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options) {
+  return write_gltf_levels(path, std::span<const RenderMesh>(&mesh, 1), {}, options).front();
 }
 
-void write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
-                       std::span<const double> coverage, const GltfOptions& options) {
+std::vector<double> write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
+                                      std::span<const double> coverage, const GltfOptions& options) {
   const GltfFormat format = gltf_format_of(path);
-  write_file_atomically(path, format_gltf_levels(levels, coverage, format, options));
+  GltfEncoding encoding = encode_gltf_levels(levels, coverage, format, options);
+  write_file_atomically(path, encoding.bytes);
+  return std::move(encoding.position_rounding);
 }
 
 RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path, bool z_up) {
@@ -448,13 +759,24 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
   loader.SetImageLoader(&skip_image, nullptr);
   std::string error;
   std::string warning;
-  const std::string folder = path.has_parent_path() ? path.parent_path().string() : std::string(".");
+  // The folder made absolute, so that tinygltf's second try (the URI relative to ".") never
+  // lands inside it by accident.
+  Confinement confinement;
+  {
+    std::error_code ignored;
+    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    confinement.root = std::filesystem::weakly_canonical(std::filesystem::absolute(folder, ignored), ignored);
+    confinement.prefix = confinement.root.string();
+    if (!confinement.prefix.ends_with('/')) confinement.prefix += '/';
+  }
+  loader.SetFsCallbacks({&confined_exists, &unexpanded, &confined_read, &refuse_write, &confinement});
   const auto size = static_cast<unsigned int>(bytes.size());
   const bool loaded =
       bytes.substr(0, 4) == "glTF"
           ? loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                        size, folder)
-          : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), size, folder);
+                                        size, confinement.root.string())
+          : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), size, confinement.root.string());
+  if (!confinement.refused.empty()) throw ParseError(name, 0, 0, confinement.refused);
   while (!error.empty() && std::isspace(static_cast<unsigned char>(error.back()))) error.pop_back();
   if (!loaded) throw ParseError(name, 0, 0, "not a glTF 2.0 file: " + error);
 
@@ -479,6 +801,7 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
   };
   if (attribute("POSITION") < 0) reader.fail("the primitive has no POSITION");
 
+  // The primitive as stored, in glTF's axes; placed by the scene's nodes at the end.
   RenderMesh mesh;
   const std::vector<double> xyz = reader.values(attribute("POSITION"), 3, Components::floats, "POSITION");
   const std::size_t n = reader.count(attribute("POSITION"));
@@ -492,12 +815,12 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
   };
   mesh.positions.reserve(n);
   for (std::size_t v = 0; v < n; ++v) {
-    mesh.positions.push_back(from_gltf_axes(Vec3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]), z_up));
+    mesh.positions.emplace_back(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
     if (!mesh.positions.back().allFinite()) reader.fail(detail::message("POSITION of vertex ", v, " is not finite"));
   }
   if (attribute("NORMAL") >= 0) {
     const std::vector<double> values = per_vertex("NORMAL", 3, Components::floats);
-    for (std::size_t v = 0; v < n; ++v) mesh.normals.push_back(read_direction(&values[3 * v], z_up, reader, "NORMAL", v));
+    for (std::size_t v = 0; v < n; ++v) mesh.normals.push_back(read_direction(&values[3 * v], reader, "NORMAL", v));
   }
   if (attribute("TEXCOORD_0") >= 0) {
     const std::vector<double> values = per_vertex("TEXCOORD_0", 2, Components::texcoords);
@@ -512,7 +835,7 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
       const double w = values[4 * v + 3];
       if (w != 1.0 && w != -1.0) reader.fail(detail::message("TANGENT of vertex ", v, " has w = ", w, ", not +1 or -1"));
       Vec4 tangent;
-      tangent << read_direction(&values[4 * v], z_up, reader, "TANGENT", v), w;
+      tangent << read_direction(&values[4 * v], reader, "TANGENT", v), w;
       mesh.tangents.push_back(tangent);
     }
   }
@@ -531,6 +854,7 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
     mesh.indices.resize(n);
     std::iota(mesh.indices.begin(), mesh.indices.end(), 0u);
   }
+  mesh = instanced(mesh, mesh_instances(model, reader), z_up, reader);
   mesh.position_ids = weld_equal_positions(mesh.positions);
   try {
     validate(mesh);  // every condition was checked above; this keeps the reader honest

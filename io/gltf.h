@@ -7,8 +7,9 @@
 // What write_gltf produces (the Khronos validator reports no error and no warning on it,
 // tests/io/gltf_test.cpp checks that with tools/gltf-validate):
 //   asset         version "2.0", generator "patchwork"
-//   scene 0       one node (named by GltfOptions::name) holding one mesh (the same name) of one
-//                 primitive, mode TRIANGLES, with material 0
+//   scene 0       one node (named by GltfOptions::name, its translation the centre of the
+//                 positions' box) holding one mesh (the same name) of one primitive, mode
+//                 TRIANGLES, with material 0
 //   material 0    "default": pbrMetallicRoughness with baseColorFactor (0.8, 0.8, 0.8, 1),
 //                 metallicFactor 0, roughnessFactor 0.5; doubleSided as GltfOptions::double_sided
 //   attributes    POSITION (float VEC3, with min/max), NORMAL (float VEC3), TEXCOORD_0 (float
@@ -25,19 +26,27 @@
 // set (the default) every position, normal and tangent direction (x, y, z) is written as
 // (x, z, -y) and read back as (X, -Z, Y), a rotation about +x by -90 degrees (so it keeps the
 // winding; negation is exact, so the map itself loses nothing). Values are stored as float32:
-//   positions  rounded to float; POSITION min/max are the min/max of the stored floats
+//   positions  relative to the centre t of their box (glTF's axes), stored as the node's
+//              translation (JSON numbers are doubles, kept exactly): each position p is written
+//              as the float f = float(fl(p - t)), and reads back as fl(f + t). The rounding
+//              |fl(f + t) - p| is then relative to the box's half extent, not to |p| (the teapot
+//              moved to (1e5, -2e5, 3e4): about 1e-7 instead of 0.0078); its bound is returned
+//              by encode_gltf_levels / write_gltf (position_rounding). POSITION min/max are the
+//              min/max of the stored floats. A centred mesh (t = 0) gets no translation.
 //   normals    normalised in double (validate() allows 1e-6 slack), then rounded to float once,
 //              so the stored length is 1 to within about 1e-7
 //   tangents   xyz as normals; w is +1 or -1 exactly
 //   uvs        rounded to float, written as they are (glTF puts uv (0, 0) at the top-left
 //              corner of an image; patchwork's uvs are surface parameters and are not flipped)
-// Reading a file written here therefore gives every value rounded to float and back, exactly.
+// Reading a file written here therefore gives every value rounded to float and back, exactly,
+// the positions as fl(float(fl(p - t)) + t).
 
 #include <filesystem>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "meshes/render_mesh.h"
 
@@ -72,21 +81,39 @@ std::string format_gltf(const RenderMesh& mesh, GltfFormat format, const GltfOpt
 /// hold "MSFT_screencoverage": coverage, one value per level, the screen coverage down to which
 /// that level is meant to be shown (non-increasing, in [0, 1]; the last is where nothing need be
 /// drawn). All levels share material 0 (doubleSided from levels[0] unless given). A client that
-/// knows no MSFT_lod shows levels[0]. One level gives exactly format_gltf's file.
+/// knows no MSFT_lod shows levels[0]. Every level is stored from the centre of levels[0]'s box,
+/// every node's translation. One level gives exactly format_gltf's file.
 /// \throws InvalidInput as format_gltf for any level, for no level, or if more than one level
 ///         comes without exactly one coverage per level or with coverages out of order.
 std::string format_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,
                                const GltfOptions& options = {});
 
+/// A glTF file's bytes, and how far its positions are from the mesh's.
+struct GltfEncoding {
+  std::string bytes;
+  /// Per level (one for a single mesh): a bound, rigorous under round-to-nearest, on the largest
+  /// distance between a vertex's position p and where the file puts it, both the exact f + t of
+  /// its float offset f and node translation t and the double fl(f + t) parse_gltf returns. A
+  /// mesh whose error from a surface is at most e is, as written, within e + position_rounding.
+  std::vector<double> position_rounding;
+};
+
+/// The file format_gltf_levels gives, with the rounding of its positions.
+/// \throws InvalidInput as format_gltf_levels.
+GltfEncoding encode_gltf_levels(std::span<const RenderMesh> levels, std::span<const double> coverage, GltfFormat format,
+                                const GltfOptions& options = {});
+
 /// Writes `mesh` as .glb or .gltf, chosen by the extension (compared without regard to case),
-/// atomically (io/atomic_file.h): a failed write leaves no partial file.
+/// atomically (io/atomic_file.h): a failed write leaves no partial file. Returns the bound on the
+/// rounding of its positions (GltfEncoding::position_rounding).
 /// \throws IoError naming the path for another extension or a failed write; InvalidInput as
 ///         format_gltf (nothing written).
-void write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options = {});
+double write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options = {});
 
-/// Writes a level-of-detail chain (format_gltf_levels) as write_gltf writes one mesh.
-void write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
-                       std::span<const double> coverage, const GltfOptions& options = {});
+/// Writes a level-of-detail chain (format_gltf_levels) as write_gltf writes one mesh; returns the
+/// position rounding of each level.
+std::vector<double> write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
+                                      std::span<const double> coverage, const GltfOptions& options = {});
 
 /// Parses the bytes of a .glb or .gltf file (told apart by the "glTF" magic) written by anyone,
 /// holding exactly one mesh primitive, of mode TRIANGLES: POSITION (float), optional NORMAL
@@ -94,12 +121,22 @@ void write_gltf_levels(const std::filesystem::path& path, std::span<const Render
 /// unsigned byte/short/int or none (then vertices 0 1 2, 3 4 5, ...). Positions, normals and
 /// tangents are converted back to Z-up when `z_up` is set. Normals and tangents more than 1e-6
 /// from unit length are renormalised. position_ids weld vertices with equal positions (equal
-/// floats; -0 equals +0): a vertex's id is the first vertex with its position. Node transforms,
-/// materials and other attributes are not read. Buffers in other files are looked up beside
-/// `path`, which also names the file in messages.
+/// floats; -0 equals +0): a vertex's id is the first vertex with its position. The mesh is placed
+/// by the scene graph (docs/io.md "Node transforms"): once per node holding it in the default
+/// scene (scene 0 if none is named; without scenes, under every node that is no node's child;
+/// without nodes, once as stored), each node's matrix or T * R * S composed down the hierarchy, in
+/// glTF's axes before the Z-up map; normals by the inverse transpose, renormalised; a negative
+/// determinant swaps each triangle's last two corners and flips tangent w. Materials and other
+/// attributes are not read. `path` names the file in messages, and its folder
+/// is where buffers (and images) in other files are read: a URI is a data: URI or a relative path
+/// (percent-decoded, as tinygltf decodes it) to a regular file inside that folder, with no ".."
+/// and no symbolic link leading out of it.
 /// \throws ParseError naming `path` if the bytes are no such glTF (a required extension, sparse
 ///         accessors, values that are not finite, a zero normal, tangent w other than +-1, an
-///         index out of range, data outside its buffer, a buffer file that cannot be read).
+///         index out of range, data outside its buffer, a buffer file that cannot be read, a
+///         buffer or image URI naming a file outside the folder, naming the URI; a node hierarchy
+///         with a cycle or a node with two parents, a singular or non-affine transform, a
+///         non-finite one, a zero quaternion, naming the node).
 RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path, bool z_up = true);
 
 /// Reads a .glb or .gltf file as parse_gltf does.

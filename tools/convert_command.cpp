@@ -1,5 +1,6 @@
 #include "tools/convert_command.h"
 
+#include "core/errors.h"
 #include "io/gltf.h"
 #include "io/mesh_file.h"
 #include "tools/output_files.h"
@@ -10,7 +11,12 @@ void run_convert(const std::string& input, const std::string& output) {
   // The output's extension is checked before anything is read.
   check_mesh_output("convert", output);
   const FaceVertexMesh mesh = is_gltf(input) ? welded_faces(read_gltf(input)) : read_mesh(input);
-  write_polygon_mesh(output, mesh);
+  try {
+    write_polygon_mesh(output, mesh);
+  } catch (const InvalidInput& e) {
+    // What the mesh cannot be written as (a face that is not simple) is the input's fault: name it.
+    throw InvalidInput(input + ": " + e.what());
+  }
 }
 
 }  // namespace patchwork::tools

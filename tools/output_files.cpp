@@ -9,13 +9,14 @@
 #include "io/gltf.h"
 #include "io/mesh_file.h"
 #include "meshes/normals.h"
+#include "meshes/polygon.h"
 #include "meshes/render_mesh.h"
 
 namespace patchwork::tools {
 
 namespace {
 
-// Triangles fanned from each face's first corner, normals split at 30 degree creases.
+// Each face ear-clipped into triangles (meshes/polygon.h), normals split at 30 degree creases.
 RenderMesh render_mesh(const FaceVertexMesh& mesh) {
   const SplitNormals split = split_normals(mesh, 30.0 * std::numbers::pi / 180.0);
   RenderMesh render;
@@ -26,12 +27,7 @@ RenderMesh render_mesh(const FaceVertexMesh& mesh) {
     render.normals.push_back(n.norm() > 0.0 ? n.normalized() : Vec3::UnitZ());
     render.position_ids.push_back(split.source_vertex[v]);
   }
-  for (std::size_t f = 0; f < split.mesh.face_count(); ++f) {
-    const auto face = split.mesh.face(f);
-    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-      render.indices.insert(render.indices.end(), {face[0], face[k], face[k + 1]});
-    }
-  }
+  render.indices = triangulate_faces(split.mesh);
   return render;
 }
 

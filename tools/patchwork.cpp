@@ -63,7 +63,9 @@ int main(int argc, char** argv) {
   tessellate->add_option("--lod", tess.lod_factors,
                          "Coarser levels of detail in the glTF file (MSFT_lod), each this factor times the tolerance")
       ->delimiter(',');
-  tessellate->add_flag("--json", tess.json, "Print the summary as JSON");
+  tessellate->add_flag("--json", tess.json,
+                       "Print the summary as JSON (error_bound: the mesh's; file_error_bound: the file's, adding "
+                       "the float rounding of glTF positions)");
   tessellate->add_option("--max-triangles", tess.max_triangles, "Refuse to make more triangles than this")
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{2'000'000'000}));
 

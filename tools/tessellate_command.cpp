@@ -167,20 +167,24 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tessellation_start).count();
   if (elapsed() > 1.0) progress << "patchwork: tessellated in " << seconds << " s, writing " << arguments.output << "\n";
+  // The float rounding of each level's positions as written (OBJ, OFF and PLY hold doubles exactly).
+  std::vector<double> rounding(1 + coarser.size(), 0.0);
   if (gltf) {
     // The patch set knows whether the surface has a boundary (an open edge): the lid gap shows
     // the inside, so such a mesh is double-sided.
     GltfOptions gltf_options;
     gltf_options.double_sided = !set.open_edges().empty();
     if (coarser.empty()) {
-      write_gltf(arguments.output, result.mesh, gltf_options);
+      rounding[0] = write_gltf(arguments.output, result.mesh, gltf_options);
     } else {
-      write_gltf_levels(arguments.output, level_meshes(result, coarser),
-                        screen_coverages(set, coarser, arguments.pixel_tolerance), gltf_options);
+      rounding = write_gltf_levels(arguments.output, level_meshes(result, coarser),
+                                   screen_coverages(set, coarser, arguments.pixel_tolerance), gltf_options);
     }
   } else {
     write_mesh(arguments.output, welded_faces(result.mesh));
   }
+  // The bound for the file: the mesh's plus what writing moved a vertex (io/gltf.h).
+  const double file_error_bound = result.error_bound + rounding[0];
   if (arguments.json) {
     const nlohmann::json document = {{"patches", set.patches().size()},
                                      {"triangles", result.mesh.triangle_count()},
@@ -189,6 +193,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
                                      // Uniform grids have no tolerance: null.
                                      {"tolerance", arguments.segments ? nlohmann::json(nullptr) : nlohmann::json(result.tolerance)},
                                      {"error_bound", result.error_bound},
+                                     {"file_error_bound", file_error_bound},
                                      {"measured_error", result.measured_error},
                                      {"culled_patches", result.culled_patches}};
     out << document.dump(2) << "\n";
@@ -206,10 +211,13 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     out << "  tolerance:      " << result.tolerance << "\n";
   }
   out << "  error bound:    " << result.error_bound << " (guaranteed)\n";
+  out << "  file bound:     " << file_error_bound << " (guaranteed for the file: + " << rounding[0]
+      << " float rounding of its positions)\n";
   out << "  measured error: " << result.measured_error << "\n";
   for (std::size_t k = 0; k < coarser.size(); ++k) {
     out << "  level " << k + 1 << ":        " << coarser[k].mesh.triangle_count() << " triangles, tolerance "
-        << coarser[k].tolerance << ", bound " << coarser[k].error_bound << ", measured " << coarser[k].measured_error
+        << coarser[k].tolerance << ", bound " << coarser[k].error_bound << " (file "
+        << coarser[k].error_bound + rounding[k + 1] << "), measured " << coarser[k].measured_error
         << "\n";
   }
 }

@@ -4,10 +4,13 @@
 // [--uv none|patch|atlas] [--tangents] [--no-split] [--crease-angle DEG] [--lod F1,F2,...] [--json]`.
 //
 // Prints patches, triangles, vertices, seconds (the tessellation alone, every level with --lod), the absolute tolerance,
-// the a-priori error bound, the measured error and the culled patches; with --json one object
-// with exactly the keys patches, triangles, vertices, seconds, tolerance, error_bound,
-// measured_error, culled_patches. OBJ, OFF and PLY get the welded triangles (positions only);
-// glTF gets the render mesh (normals, UVs, tangents).
+// the a-priori error bound, the file's bound, the measured error and the culled patches; with
+// --json one object with exactly the keys patches, triangles, vertices, seconds, tolerance,
+// error_bound, file_error_bound, measured_error, culled_patches. error_bound is the mesh's (in
+// double); file_error_bound is the file's: error_bound plus the bound on the float rounding of
+// the positions glTF stores (GltfEncoding::position_rounding, io/gltf.h), and error_bound itself
+// for OBJ, OFF and PLY, which hold the doubles exactly. OBJ, OFF and PLY get the welded
+// triangles (positions only); glTF gets the render mesh (normals, UVs, tangents).
 //
 // --lod F1,F2,... adds coarser levels of detail to a glTF file (MSFT_lod, io/gltf.h): level k is
 // tessellated at F_k times the tolerance. Each level's screen coverage hint is where the next

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,10 @@
 
 #include "core/errors.h"
 #include "io/atomic_file.h"
+#include "io/bpt.h"
+#include "surfaces/patch_set.h"
+#include "surfaces/tessellator.h"
+#include "tests/support/moved_patches.h"
 
 namespace patchwork {
 namespace {
@@ -123,12 +128,45 @@ RenderMesh grid(std::uint32_t columns, std::uint32_t rows) {
   return mesh;
 }
 
-// What a file written by write_gltf reads back as: every value rounded to float. (The test
+// p in glTF's axes: (x, z, -y) when z_up.
+Vec3 gltf_axes(const Vec3& p, bool z_up = true) { return z_up ? Vec3(p.x(), p.z(), -p.y()) : p; }
+
+// The node translation write_gltf stores positions from: the centre of their box in glTF's axes.
+Vec3 gltf_origin(const RenderMesh& mesh, bool z_up = true) {
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 high = -low;
+  for (const Vec3& p : mesh.positions) {
+    low = low.cwiseMin(gltf_axes(p, z_up));
+    high = high.cwiseMax(gltf_axes(p, z_up));
+  }
+  return 0.5 * low + 0.5 * high;
+}
+
+// The float stored for position p (glTF's axes), relative to the origin t.
+Vec3 stored(const Vec3& p, const Vec3& t, bool z_up = true) {
+  const Vec3 g = gltf_axes(p, z_up);
+  return Vec3(f32(g.x() - t.x()), f32(g.y() - t.y()), f32(g.z() - t.z()));
+}
+
+// What a file written by write_gltf reads back as: every value rounded to float, the positions
+// as the stored float offset plus the node's translation, fl(f + t), back in Z-up. (The test
 // meshes' normals and tangents are axis vectors, which floats hold exactly.)
-RenderMesh rounded(RenderMesh mesh) {
-  for (Vec3& p : mesh.positions) p = Vec3(f32(p.x()), f32(p.y()), f32(p.z()));
+RenderMesh rounded(RenderMesh mesh, bool z_up = true) {
+  const Vec3 t = gltf_origin(mesh, z_up);
+  for (Vec3& p : mesh.positions) {
+    const Vec3 g = stored(p, t, z_up) + t;
+    p = z_up ? Vec3(g.x(), -g.z(), g.y()) : g;
+  }
   for (Vec2& uv : mesh.uvs) uv = Vec2(f32(uv.x()), f32(uv.y()));
   return mesh;
+}
+
+// The node write_gltf writes for `mesh`: its mesh, name, and translation unless it is zero.
+json expected_node(const RenderMesh& mesh, int index, const std::string& name, bool z_up = true) {
+  json node = {{"mesh", index}, {"name", name}};
+  const Vec3 t = gltf_origin(mesh, z_up);
+  if (t != Vec3::Zero()) node["translation"] = {t.x(), t.y(), t.z()};
+  return node;
 }
 
 // Where two meshes first differ, or "" if they are equal in every value.
@@ -204,7 +242,7 @@ void expect_layout(const json& document, const RenderMesh& mesh, std::uint64_t b
   EXPECT_EQ(document["asset"]["generator"], "patchwork");
   EXPECT_EQ(document["scene"], 0);
   EXPECT_EQ(document["scenes"], json::parse(R"([{"nodes": [0]}])"));
-  EXPECT_EQ(document["nodes"], json::parse(R"([{"mesh": 0, "name": "patchwork"}])"));
+  EXPECT_EQ(document["nodes"], json::array({expected_node(mesh, 0, "patchwork")}));
   ASSERT_EQ(document["meshes"].size(), 1u);
   ASSERT_EQ(document["meshes"][0]["primitives"].size(), 1u);
   const json& primitive = document["meshes"][0]["primitives"][0];
@@ -242,19 +280,34 @@ void expect_layout(const json& document, const RenderMesh& mesh, std::uint64_t b
   EXPECT_EQ(accessors[indices]["count"], mesh.indices.size());
   EXPECT_EQ(accessors[indices]["type"], "SCALAR");
 
-  // POSITION min/max: those of the stored floats, (x, y, z) stored as (x, z, -y).
+  // POSITION min/max: those of the stored floats, (x, y, z) stored as (x, z, -y) - t.
   const json& position = accessors[primitive["attributes"]["POSITION"].get<int>()];
   std::vector<double> low(3, std::numeric_limits<double>::infinity());
   std::vector<double> high(3, -std::numeric_limits<double>::infinity());
+  const Vec3 t = gltf_origin(mesh);
   for (const Vec3& p : mesh.positions) {
-    const double stored[3] = {f32(p.x()), f32(p.z()), f32(-p.y())};
+    const Vec3 f = stored(p, t);
     for (int c = 0; c < 3; ++c) {
-      low[c] = std::min(low[c], stored[c]);
-      high[c] = std::max(high[c], stored[c]);
+      low[c] = std::min(low[c], f[c]);
+      high[c] = std::max(high[c], f[c]);
     }
   }
   EXPECT_EQ(position["min"].get<std::vector<double>>(), low);
   EXPECT_EQ(position["max"].get<std::vector<double>>(), high);
+}
+
+// Reading `path` fails with a ParseError naming it, whose message holds every one of `parts`.
+template <class... Parts>
+void expect_parse_error(const fs::path& path, const Parts&... parts) {
+  try {
+    read_gltf(path);
+    ADD_FAILURE() << "no ParseError for " << path;
+  } catch (const ParseError& e) {
+    EXPECT_EQ(e.path(), path.string());
+    for (const std::string& part : {std::string(parts)...}) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  }
 }
 
 // A test's own folder under the system's temp folder, removed with everything in it.
@@ -329,6 +382,43 @@ TEST_F(GltfFile, CubeReadsBackAsItsFloatRoundedValuesInBothContainers) {
   EXPECT_EQ(entries(), (std::vector<std::string>{"Mixed.GlTf", "UPPER.GLB", "cube.glb", "cube.gltf"}));
 }
 
+TEST_F(GltfFile, MovedTeapotAsWrittenStaysWithinTheReportedBound) {
+  // The teapot moved to (1e5, -2e5, 3e4), tessellated at an absolute tolerance of 0.002. Floats
+  // there are 2^-7 to 2^-6 apart (a rounding of up to 0.0078 per coordinate, four times the
+  // tolerance); offsets from the box's centre (at most ~4 from it) round by about 2.4e-7.
+  const Vec3 shift(1e5, -2e5, 3e4);
+  std::vector<BezierPatch3> patches = testing::moved(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"), shift);
+  TessellationOptions options;
+  options.tolerance = 0.002;
+  const Tessellation result = tessellate(PatchSet(std::move(patches)), options);
+  ASSERT_LE(result.error_bound, 0.002);
+  const RenderMesh& mesh = result.mesh;
+  for (const char* name : {"moved.glb", "moved.gltf"}) {
+    SCOPED_TRACE(name);
+    const double rounding = write_gltf(file(name), mesh);
+    // Far below the tolerance: the file's bound, error_bound + rounding, is the tessellator's.
+    EXPECT_LT(rounding, 1e-3 * 0.002);
+    EXPECT_GT(rounding, 0.0);
+    const RenderMesh back = read_gltf(file(name));
+    ASSERT_EQ(back.vertex_count(), mesh.vertex_count());
+    double largest = 0;
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const double distance = (back.positions[v] - mesh.positions[v]).norm();
+      largest = std::max(largest, distance);
+      ASSERT_LE(distance, rounding) << "vertex " << v;
+    }
+    // The bound is not loose by more than a small factor (per-coordinate half-ulps of ~4 in
+    // float, sqrt 3 of them at most).
+    EXPECT_GT(largest, rounding / 4);
+    std::cout << name << ": position rounding bound " << rounding << ", largest " << largest << "\n";
+  }
+  // The translation is kept at full double precision: the box's centre exactly.
+  const json document = parse_glb(read_file(file("moved.glb"))).document;
+  const Vec3 t = gltf_origin(mesh);
+  EXPECT_EQ(document["nodes"][0]["translation"].get<std::vector<double>>(), (std::vector<double>{t.x(), t.y(), t.z()}));
+  EXPECT_NE(t.x(), std::round(t.x())) << "a centre that JSON could hold in few digits would not test this";
+}
+
 TEST(Gltf, GlbChunksAndBufferViewsAreAligned) {
   // 3 u16 indices take 6 bytes, so the buffer ends off the 4-byte grid unless padded.
   RenderMesh odd = open_square();
@@ -355,15 +445,18 @@ TEST(Gltf, GltfEmbedsTheBufferAsADataUri) {
 }
 
 TEST(Gltf, PositionMinMaxAreThoseOfTheStoredFloats) {
-  // Cube corners: x in 0.3 -+ 0.05, y in -0.2 -+ 0.05, z in 0.7 -+ 0.05; glTF (x, z, -y).
+  // Cube corners: x in 0.3 -+ 0.05, y in -0.2 -+ 0.05, z in 0.7 -+ 0.05; glTF (x, z, -y), less
+  // the box's centre t.
   const json document = parse_glb(format_gltf(cube(), GltfFormat::glb)).document;
   const json& position = document["accessors"][document["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()];
-  const std::vector<double> low = {f32(0.3 - 0.05), f32(0.7 - 0.05), f32(0.2 - 0.05)};
-  const std::vector<double> high = {f32(0.3 + 0.05), f32(0.7 + 0.05), f32(0.2 + 0.05)};
+  const Vec3 t = 0.5 * Vec3(0.3 - 0.05, 0.7 - 0.05, 0.2 - 0.05) + 0.5 * Vec3(0.3 + 0.05, 0.7 + 0.05, 0.2 + 0.05);
+  EXPECT_EQ(document["nodes"][0]["translation"].get<std::vector<double>>(), (std::vector<double>{t.x(), t.y(), t.z()}));
+  const std::vector<double> low = {f32(0.3 - 0.05 - t.x()), f32(0.7 - 0.05 - t.y()), f32(0.2 - 0.05 - t.z())};
+  const std::vector<double> high = {f32(0.3 + 0.05 - t.x()), f32(0.7 + 0.05 - t.y()), f32(0.2 + 0.05 - t.z())};
   EXPECT_EQ(position["min"].get<std::vector<double>>(), low);
   EXPECT_EQ(position["max"].get<std::vector<double>>(), high);
   // ... which are not the doubles' min/max.
-  EXPECT_NE(position["max"][0].get<double>(), 0.3 + 0.05);
+  EXPECT_NE(position["max"][0].get<double>(), 0.05);
 }
 
 TEST(Gltf, IndicesAreUnsignedShortUpTo65535VerticesElseUnsignedInt) {
@@ -409,7 +502,9 @@ TEST(Gltf, SceneAndMaterialAreTheDefaults) {
   GltfOptions options;
   options.name = "teapot";
   const json document = json::parse(format_gltf(open_square(), GltfFormat::gltf, options));
-  EXPECT_EQ(document["nodes"], json::parse(R"([{"mesh": 0, "name": "teapot"}])"));
+  // The open square (0..1, 0..1, 0.25) is (0..1, 0.25, -1..0) in glTF's axes, centred at
+  // (0.5, 0.25, -0.5).
+  EXPECT_EQ(document["nodes"], json::parse(R"([{"mesh": 0, "name": "teapot", "translation": [0.5, 0.25, -0.5]}])"));
   EXPECT_EQ(document["meshes"][0]["name"], "teapot");
   ASSERT_EQ(document["materials"].size(), 1u);
   const json& pbr = document["materials"][0]["pbrMetallicRoughness"];
@@ -431,8 +526,12 @@ TEST(Gltf, LevelsOfDetailAreNodesNamedByTheFirstNodesMsftLod) {
   ASSERT_EQ(document["nodes"].size(), 3u);
   EXPECT_EQ(document["nodes"][0]["extensions"]["MSFT_lod"]["ids"], json::parse("[1, 2]"));
   EXPECT_EQ(document["nodes"][0]["extras"]["MSFT_screencoverage"], json::parse("[0.5, 0.125, 0.0]"));
-  EXPECT_EQ(document["nodes"][1], json::parse(R"({"mesh": 1, "name": "teapot_lod1"})"));
-  EXPECT_EQ(document["nodes"][2], json::parse(R"({"mesh": 2, "name": "teapot_lod2"})"));
+  // Every level stored from level 0's centre: one translation for the whole chain.
+  json lod1 = expected_node(levels[0], 1, "teapot_lod1");
+  json lod2 = expected_node(levels[0], 2, "teapot_lod2");
+  EXPECT_EQ(document["nodes"][1], lod1);
+  EXPECT_EQ(document["nodes"][2], lod2);
+  EXPECT_EQ(document["nodes"][2]["translation"], document["nodes"][0]["translation"]);
   ASSERT_EQ(document["meshes"].size(), 3u);
   for (std::size_t level = 0; level < levels.size(); ++level) {
     const json& primitive = document["meshes"][level]["primitives"][0];
@@ -464,7 +563,8 @@ TEST(Gltf, ZUpIsWrittenAsYUpKeepingTheWinding) {
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
     SCOPED_TRACE(v);
     const Vec3& p = mesh.positions[v];
-    EXPECT_EQ(raw.positions[v], Vec3(f32(p.x()), f32(p.z()), f32(-p.y())));
+    const Vec3 origin = gltf_origin(mesh);
+    EXPECT_EQ(raw.positions[v], stored(p, origin) + origin);
     const Vec3& n = mesh.normals[v];
     EXPECT_EQ(raw.normals[v], Vec3(n.x(), n.z(), -n.y()));
     const Vec4& t = mesh.tangents[v];
@@ -481,7 +581,7 @@ TEST(Gltf, ZUpIsWrittenAsYUpKeepingTheWinding) {
   GltfOptions y_up;
   y_up.z_up = false;
   const RenderMesh same = parse_gltf(format_gltf(mesh, GltfFormat::glb, y_up), "cube.glb", false);
-  EXPECT_EQ(first_difference(same, rounded(mesh)), "");
+  EXPECT_EQ(first_difference(same, rounded(mesh, false)), "");
 }
 
 TEST(Gltf, NormalsAndTangentsAreUnitAsStoredFloats) {
@@ -567,15 +667,6 @@ TEST_F(GltfFile, FailedWritesLeaveNothingBehind) {
 }
 
 TEST_F(GltfFile, ReadErrorsNameTheFile) {
-  const auto expect_parse_error = [](const fs::path& path, const std::string& part) {
-    try {
-      read_gltf(path);
-      ADD_FAILURE() << "no ParseError for " << path;
-    } catch (const ParseError& e) {
-      EXPECT_EQ(e.path(), path.string());
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-    }
-  };
   try {
     read_gltf(file("missing.glb"));
     ADD_FAILURE() << "no IoError";
@@ -611,6 +702,282 @@ TEST_F(GltfFile, ReadsATrianglePrimitiveWithoutIndices) {
   const fs::path path = edited(triangle, [](json& d) { d["meshes"][0]["primitives"][0].erase("indices"); });
   EXPECT_FALSE(json::parse(read_file(path))["meshes"][0]["primitives"][0].contains("indices"));
   EXPECT_EQ(first_difference(read_gltf(path), rounded(triangle)), "");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Node transforms (glTF 2.0, 3.5): the scene graph placed around the written node
+
+// One triangle (0, 0, 0) (1, 0, 0) (0, 1, 1), its normal (0, -1, 1)/sqrt 2 and tangent (+x, +1):
+// coordinates floats hold, and so does the centre of its box.
+RenderMesh slanted_triangle() {
+  RenderMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 1)};
+  mesh.normals.assign(3, Vec3(0, -1, 1) / std::sqrt(2.0));
+  mesh.tangents.assign(3, Vec4(1, 0, 0, 1));
+  mesh.indices = {0, 1, 2};
+  mesh.position_ids = {0, 1, 2};
+  return mesh;
+}
+
+// The triangle written to `path` in glTF's axes (z_up off), its node 0 then placed by `edit`.
+template <class Edit>
+const fs::path& write_placed(const fs::path& path, Edit edit) {
+  GltfOptions y_up;
+  y_up.z_up = false;
+  json document = json::parse(format_gltf(slanted_triangle(), GltfFormat::gltf, y_up));
+  edit(document);
+  write_file_atomically(path, document.dump());
+  return path;
+}
+
+// The file write_placed writes, read back (in glTF's axes unless `z_up`).
+template <class Edit>
+RenderMesh read_placed(const fs::path& path, Edit edit, bool z_up = false) {
+  return read_gltf(write_placed(path, edit), z_up);
+}
+
+// Node 0 (the written one) made the child of a new node `parent`, the scene's one root.
+void wrap(json& document, json parent) {
+  parent["children"] = {0};
+  document["nodes"].push_back(parent);
+  document["scenes"][0]["nodes"] = {document["nodes"].size() - 1};
+}
+
+std::vector<Vec3> mapped(const std::function<Vec3(const Vec3&)>& f) {
+  std::vector<Vec3> out;
+  for (const Vec3& p : slanted_triangle().positions) out.push_back(f(p));
+  return out;
+}
+
+void expect_directions(const RenderMesh& mesh, const Vec3& normal, const Vec4& tangent) {
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+    EXPECT_LT((mesh.normals[v] - normal).norm(), 2e-7) << v << ": " << mesh.normals[v].transpose();
+    EXPECT_LT((mesh.tangents[v].head<3>() - tangent.head<3>()).norm(), 2e-7) << v;
+    EXPECT_EQ(mesh.tangents[v].w(), tangent.w()) << v;
+  }
+}
+
+TEST_F(GltfFile, NodeScaleRotationTranslationAndMatrixArePlacedExactly) {
+  // Scale (2, 3, 4): positions (2x, 3y, 4z); the normal by the inverse transpose,
+  // diag(1/2, 1/3, 1/4) (0, -1, 1) ~ (0, -1/3, 1/4), unit (0, -0.8, 0.6): the normal of the scaled
+  // triangle (2, 0, 0) x (0, 3, 4) = (0, -8, 6).
+  RenderMesh scaled = read_placed(file("scale.gltf"), [](json& d) { wrap(d, {{"scale", {2, 3, 4}}}); });
+  EXPECT_EQ(scaled.positions, mapped([](const Vec3& p) { return Vec3(2 * p.x(), 3 * p.y(), 4 * p.z()); }));
+  expect_directions(scaled, Vec3(0, -0.8, 0.6), Vec4(1, 0, 0, 1));
+  EXPECT_EQ(scaled.indices, (std::vector<std::uint32_t>{0, 1, 2}));
+  // Rotation by 180 degrees about z, quaternion (0, 0, 1, 0): (-x, -y, z), exactly.
+  RenderMesh turned = read_placed(file("turn.gltf"), [](json& d) { wrap(d, {{"rotation", {0, 0, 1, 0}}}); });
+  EXPECT_EQ(turned.positions, mapped([](const Vec3& p) { return Vec3(-p.x(), -p.y(), p.z()); }));
+  expect_directions(turned, Vec3(0, 1, 1) / std::sqrt(2.0), Vec4(-1, 0, 0, 1));
+  // 90 degrees about z, (0, 0, sqrt 1/2, sqrt 1/2): (-y, x, z) to rounding.
+  const double h = std::sqrt(0.5);
+  RenderMesh quarter = read_placed(file("quarter.gltf"), [&](json& d) { wrap(d, {{"rotation", {0, 0, h, h}}}); });
+  const std::vector<Vec3> quarter_expected = mapped([](const Vec3& p) { return Vec3(-p.y(), p.x(), p.z()); });
+  for (std::size_t v = 0; v < 3; ++v) EXPECT_LT((quarter.positions[v] - quarter_expected[v]).norm(), 1e-15) << v;
+  expect_directions(quarter, Vec3(1, 0, 1) / std::sqrt(2.0), Vec4(0, 1, 0, 1));
+  // Translation (10, 20, 30).
+  RenderMesh moved = read_placed(file("move.gltf"), [](json& d) { wrap(d, {{"translation", {10, 20, 30}}}); });
+  EXPECT_EQ(moved.positions, mapped([](const Vec3& p) { return Vec3(p.x() + 10, p.y() + 20, p.z() + 30); }));
+  // A matrix, column-major: (x, y, z) -> (1 - 2 y, 2 + x, 3 + 3 z).
+  const json matrix = {0, 1, 0, 0, -2, 0, 0, 0, 0, 0, 3, 0, 1, 2, 3, 1};
+  RenderMesh affine = read_placed(file("matrix.gltf"), [&](json& d) { wrap(d, {{"matrix", matrix}}); });
+  EXPECT_EQ(affine.positions, mapped([](const Vec3& p) { return Vec3(1 - 2 * p.y(), 2 + p.x(), 3 + 3 * p.z()); }));
+  // Read Z-up, the node's transform acts in glTF's axes first: (X, Y, Z) -> (X, -Z, Y) after it.
+  RenderMesh z_up = read_placed(file("scale_z.gltf"), [](json& d) { wrap(d, {{"scale", {2, 3, 4}}}); }, true);
+  EXPECT_EQ(z_up.positions, mapped([](const Vec3& p) { return Vec3(2 * p.x(), -4 * p.z(), 3 * p.y()); }));
+}
+
+TEST_F(GltfFile, NestedNodesComposeParentTimesChild) {
+  // Root: translation (1, 0, 0) and scale 2; its child: 180 degrees about z; then node 0.
+  // World = T S R: (x, y, z) -> (1 - 2 x, -2 y, 2 z).
+  const RenderMesh mesh = read_placed(file("nested.gltf"), [](json& d) {
+    d["nodes"].push_back({{"rotation", {0, 0, 1, 0}}, {"children", {0}}});
+    d["nodes"].push_back({{"translation", {1, 0, 0}}, {"scale", {2, 2, 2}}, {"children", {1}}});
+    d["scenes"][0]["nodes"] = {2};
+  });
+  EXPECT_EQ(mesh.positions, mapped([](const Vec3& p) { return Vec3(1 - 2 * p.x(), -2 * p.y(), 2 * p.z()); }));
+  // Without a scene, the roots are the nodes that are nobody's child: the same.
+  const RenderMesh sceneless = read_placed(file("sceneless.gltf"), [](json& d) {
+    d["nodes"].push_back({{"rotation", {0, 0, 1, 0}}, {"children", {0}}});
+    d["nodes"].push_back({{"translation", {1, 0, 0}}, {"scale", {2, 2, 2}}, {"children", {1}}});
+    d.erase("scenes");
+    d.erase("scene");
+  });
+  EXPECT_EQ(sceneless.positions, mesh.positions);
+  // The default scene is the one "scene" names.
+  const RenderMesh second = read_placed(file("second.gltf"), [](json& d) {
+    d["nodes"].push_back({{"translation", {0, 0, 7}}, {"children", {0}}});
+    d["scenes"] = {{{"nodes", {0}}}, {{"nodes", {1}}}};
+    d["scene"] = 1;
+  });
+  EXPECT_EQ(second.positions, mapped([](const Vec3& p) { return Vec3(p.x(), p.y(), p.z() + 7); }));
+}
+
+TEST_F(GltfFile, AMeshInTwoNodesAppearsTwice) {
+  const RenderMesh mesh = read_placed(file("twice.gltf"), [](json& d) {
+    const json written = d["nodes"][0];
+    d["nodes"].push_back({{"children", {0}}});                               // 1: identity
+    d["nodes"].push_back(written);                                            // 2: node 0 again
+    d["nodes"].push_back({{"translation", {5, 0, 0}}, {"children", {2}}});  // 3: moves node 2
+    d["scenes"][0]["nodes"] = {1, 3};
+  });
+  std::vector<Vec3> expected = slanted_triangle().positions;
+  for (const Vec3& p : slanted_triangle().positions) expected.push_back(p + Vec3(5, 0, 0));
+  EXPECT_EQ(mesh.positions, expected);
+  EXPECT_EQ(mesh.indices, (std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(mesh.position_ids, (std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5}));
+  EXPECT_EQ(mesh.normals.size(), 6u);
+}
+
+TEST_F(GltfFile, AMirrorFlipsTheWindingAndTheTangentSign) {
+  // Scale (-1, 1, 1): (-x, y, z); the normal (0, -1, 1)/sqrt 2 keeps (its x is 0); the tangent
+  // (1, 0, 0) becomes (-1, 0, 0) and w -1. The triangle's corners 1 and 2 swap, so it still turns
+  // counter-clockwise about its normal.
+  const RenderMesh mesh = read_placed(file("mirror.gltf"), [](json& d) { wrap(d, {{"scale", {-1, 1, 1}}}); });
+  EXPECT_EQ(mesh.positions, mapped([](const Vec3& p) { return Vec3(-p.x(), p.y(), p.z()); }));
+  EXPECT_EQ(mesh.indices, (std::vector<std::uint32_t>{0, 2, 1}));
+  expect_directions(mesh, Vec3(0, -1, 1) / std::sqrt(2.0), Vec4(-1, 0, 0, -1));
+  const Vec3& a = mesh.positions[mesh.indices[0]];
+  const Vec3& b = mesh.positions[mesh.indices[1]];
+  const Vec3& c = mesh.positions[mesh.indices[2]];
+  EXPECT_GT((b - a).cross(c - a).dot(mesh.normals[0]), 0);
+  // A matrix of determinant -1 (x and y swapped) does the same.
+  const RenderMesh swapped = read_placed(file("swap.gltf"), [](json& d) {
+    wrap(d, {{"matrix", {0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});
+  });
+  EXPECT_EQ(swapped.positions, mapped([](const Vec3& p) { return Vec3(p.y(), p.x(), p.z()); }));
+  EXPECT_EQ(swapped.indices, (std::vector<std::uint32_t>{0, 2, 1}));
+  const Vec3& p = swapped.positions[0];
+  const Vec3& q = swapped.positions[2];
+  const Vec3& r = swapped.positions[1];
+  EXPECT_GT((q - p).cross(r - p).dot(swapped.normals[0]), 0);
+}
+
+TEST_F(GltfFile, NodeGraphsThatCannotBeHonouredAreRefusedNamingTheNode) {
+  const auto expect_refused = [&](const std::string& name, const std::function<void(json&)>& edit,
+                                  const std::string& part) {
+    SCOPED_TRACE(name);
+    expect_parse_error(write_placed(file(name), edit), part);
+  };
+  expect_refused("cycle.gltf", [](json& d) {
+    d["nodes"].push_back({{"name", "a"}, {"children", {2}}});
+    d["nodes"].push_back({{"name", "b"}, {"children", {1}}});
+  }, "node 1 ('a') is its own ancestor (a cycle in the node hierarchy)");
+  expect_refused("self.gltf", [](json& d) { d["nodes"][0]["children"] = {0}; }, "node 0 ('patchwork') is its own ancestor");
+  expect_refused("parents.gltf", [](json& d) {
+    d["nodes"].push_back({{"children", {0}}});
+    d["nodes"].push_back({{"children", {0}}});
+  }, "node 0 ('patchwork') has two parents (1 and 2)");
+  expect_refused("flat.gltf", [](json& d) { wrap(d, {{"name", "flat"}, {"scale", {1, 0, 1}}}); },
+                 "node 1 ('flat'): transform is singular (determinant 0)");
+  expect_refused("zeros.gltf", [](json& d) { wrap(d, {{"matrix", std::vector<double>(16, 0.0)}}); },
+                 "node 1: matrix is not affine");
+  expect_refused("singular.gltf", [](json& d) {
+    wrap(d, {{"matrix", {1, 0, 0, 0, 2, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});  // columns (1, 0, 0) and (2, 0, 0)
+  }, "node 1: transform is singular");
+  expect_refused("tiny.gltf", [](json& d) {
+    // Each determinant 1e-180; composed, 1e-360 underflows to 0.
+    d["nodes"].push_back({{"scale", {1e-60, 1e-60, 1e-60}}, {"children", {0}}});
+    d["nodes"].push_back({{"scale", {1e-60, 1e-60, 1e-60}}, {"children", {1}}});
+    d["scenes"][0]["nodes"] = {2};
+  }, "node 1: transform composed with its ancestors' is singular (determinant 0)");
+  expect_refused("projective.gltf", [](json& d) {
+    wrap(d, {{"matrix", {1, 0, 0, 0.5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});
+  }, "node 1: matrix is not affine");
+  expect_refused("quaternion.gltf", [](json& d) { wrap(d, {{"rotation", {0, 0, 0, 0}}}); },
+                 "node 1: rotation is the zero quaternion");
+  expect_refused("child.gltf", [](json& d) { d["nodes"][0]["children"] = {9}; },
+                 "node 0 ('patchwork'): child 9 does not exist");
+  expect_refused("root.gltf", [](json& d) {
+    wrap(d, json::object());
+    d["scenes"][0]["nodes"] = {1, 0};
+  }, "scene 0 lists node 0 ('patchwork'), a child of node 1, as a root");
+  expect_refused("nomesh.gltf", [](json& d) { d["nodes"][0].erase("mesh"); }, "no node of the scene holds the mesh");
+}
+
+// A buffer in a file of its own: the cube's .glb JSON with buffers[0].uri = `uri`, in folder
+// inner/ of the test's folder, and the BIN chunk written to `bin` (relative to the test's folder).
+struct ExternalBuffer {
+  json document;
+  std::string bin;
+};
+
+ExternalBuffer external_buffer(const RenderMesh& mesh) {
+  const std::string glb = format_gltf(mesh, GltfFormat::glb);
+  ExternalBuffer external;
+  external.document = parse_glb(glb).document;
+  const std::size_t bin_header = 20 + u32_at(glb, 12);
+  external.bin = glb.substr(bin_header + 8, u32_at(glb, bin_header));
+  external.bin.resize(external.document["buffers"][0]["byteLength"].get<std::size_t>());
+  return external;
+}
+
+TEST_F(GltfFile, BufferUrisAreReadOnlyInsideTheFilesFolder) {
+  const RenderMesh mesh = cube();
+  const ExternalBuffer external = external_buffer(mesh);
+  fs::create_directories(file("inner") / "sub");
+  fs::create_directories(file("outside"));
+  write_file_atomically(file("inner") / "sub" / "data.bin", external.bin);
+  write_file_atomically(file("outside") / "data.bin", external.bin);
+  fs::create_symlink(file("outside") / "data.bin", file("inner") / "link.bin");
+  fs::create_symlink(fs::path("sub") / "data.bin", file("inner") / "inside_link.bin");
+  const auto with_uri = [&](const std::string& uri) {
+    json document = external.document;
+    document["buffers"][0]["uri"] = uri;
+    const fs::path path = file("inner") / "mesh.gltf";
+    write_file_atomically(path, document.dump());
+    return path;
+  };
+  // Inside the folder: read, as the .glb reads.
+  const RenderMesh expected = parse_gltf(format_gltf(mesh, GltfFormat::glb), "cube.glb");
+  for (const std::string uri : {"sub/data.bin", "sub%2Fdata.bin", "./sub/data.bin", "inside_link.bin"}) {
+    SCOPED_TRACE(uri);
+    EXPECT_EQ(first_difference(read_gltf(with_uri(uri)), expected), "");
+  }
+  // Anywhere else: a ParseError naming the file and the (decoded) URI, though the data is there.
+  struct Refused {
+    std::string uri, decoded, reason;
+  };
+  const std::vector<Refused> refused = {
+      {"../outside/data.bin", "../outside/data.bin", "goes up out of the folder with '..'"},
+      {"sub/../../outside/data.bin", "sub/../../outside/data.bin", "goes up out of the folder with '..'"},
+      {"%2e%2e/outside/data.bin", "../outside/data.bin", "goes up out of the folder with '..'"},
+      {"%2E%2E%2Foutside%2Fdata.bin", "../outside/data.bin", "goes up out of the folder with '..'"},
+      {(file("outside") / "data.bin").string(), (file("outside") / "data.bin").string(), "is an absolute path"},
+      {"link.bin", "link.bin", "leads out of the folder through a symbolic link"},
+  };
+  for (const Refused& r : refused) {
+    SCOPED_TRACE(r.uri);
+    expect_parse_error(with_uri(r.uri), "'" + r.decoded + "'", r.reason);
+  }
+  // An image file is opened too (though not decoded): its URI is held to the same rule.
+  {
+    json document = external.document;
+    document["buffers"][0]["uri"] = "sub/data.bin";
+    document["images"] = {{{"uri", "../outside/data.bin"}}};
+    const fs::path path = file("inner") / "image.gltf";
+    write_file_atomically(path, document.dump());
+    expect_parse_error(path, "'../outside/data.bin'");
+    document["images"] = {{{"uri", "sub/data.bin"}}};  // inside: read (and not decoded)
+    write_file_atomically(path, document.dump());
+    EXPECT_EQ(first_difference(read_gltf(path), expected), "");
+  }
+  // A .glb whose buffer is an outside file is refused the same way.
+  json document = external.document;
+  document["buffers"][0]["uri"] = "../outside/data.bin";
+  {
+    const std::string text = document.dump();
+    std::string padded = text + std::string((4 - text.size() % 4) % 4, ' ');
+    std::string glb(12, '\0');
+    const auto put = [&](std::uint32_t x) { glb.append(reinterpret_cast<const char*>(&x), 4); };
+    put(static_cast<std::uint32_t>(padded.size()));
+    put(0x4E4F534Au);
+    glb += padded;
+    const std::uint32_t header[3] = {0x46546C67u, 2u, static_cast<std::uint32_t>(glb.size())};
+    std::memcpy(glb.data(), header, sizeof header);
+    write_file_atomically(file("inner") / "mesh.glb", glb);
+    expect_parse_error(file("inner") / "mesh.glb", "'../outside/data.bin'");
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -7,11 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <vector>
 
 #include "core/errors.h"
 #include "io/bpt.h"
+#include "io/gltf.h"
 #include "surfaces/tessellator.h"
+#include "tests/support/moved_patches.h"
 #include "tests/surfaces/patch_set_fixtures.h"
 
 namespace patchwork {
@@ -249,6 +252,34 @@ TEST(HausdorffDistance, StaysWithinTheTessellatorsBoundAtAFineTolerance) {
     EXPECT_LE(d.hausdorff(), result.error_bound);
     EXPECT_GT(d.hausdorff(), 0.5 * result.measured_error);
   }
+}
+
+TEST(HausdorffDistance, TheMovedTeapotAsWrittenToGltfStaysWithinTheFilesBound) {
+  // The teapot moved to (1e5, -2e5, 3e4), tessellated at an absolute tolerance of 0.002. Read
+  // back from the glb, the mesh is within error_bound + position_rounding of the exact surface;
+  // with every position rounded to float where it stands (what the writer used to store), the
+  // file was several times the bound away.
+  const std::vector<BezierPatch3> patches =
+      testing::moved(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"), Vec3(1e5, -2e5, 3e4));
+  const PatchSet set(patches);
+  TessellationOptions options;
+  options.tolerance = 0.002;
+  const Tessellation result = tessellate(set, options);
+  const GltfEncoding file = encode_gltf_levels(std::span<const RenderMesh>(&result.mesh, 1), {}, GltfFormat::glb);
+  const RenderMesh back = parse_gltf(file.bytes, "moved.glb");
+  const double file_bound = result.error_bound + file.position_rounding[0];
+  HausdorffOptions meter;
+  meter.grid_segments = 12;
+  meter.lattice = 3;
+  meter.refine = 16;
+  const HausdorffDistance written = hausdorff_distance(set.patches(), back.positions, back.indices, meter);
+  EXPECT_LE(written.hausdorff(), file_bound);
+  std::vector<Vec3> plain_floats = result.mesh.positions;
+  for (Vec3& p : plain_floats) p = p.cast<float>().cast<double>();
+  const HausdorffDistance old = hausdorff_distance(set.patches(), plain_floats, result.mesh.indices, meter);
+  EXPECT_GT(old.hausdorff(), 2 * file_bound);
+  std::cout << "error bound " << result.error_bound << ", file bound " << file_bound << ", measured as written "
+            << written.hausdorff() << ", with plain floats " << old.hausdorff() << "\n";
 }
 
 #endif  // PATCHWORK_ENABLE_ASSERTS

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,9 +15,12 @@
 #include <sstream>
 #include <string>
 
+#include "io/bpt.h"
+#include "io/gltf.h"
 #include "io/mesh_file.h"
 #include "meshes/topology.h"
 #include "tests/support/temporary_directory.h"
+#include "tests/support/moved_patches.h"
 
 namespace patchwork {
 namespace {
@@ -71,7 +75,7 @@ TEST(Cli, TessellatePrintsExactlyThePromisedJsonAndWritesValidGltf) {
   std::set<std::string> keys;
   for (const auto& [key, value] : summary.items()) keys.insert(key);
   EXPECT_EQ(keys, (std::set<std::string>{"patches", "triangles", "vertices", "seconds", "tolerance", "error_bound",
-                                         "measured_error", "culled_patches"}));
+                                         "file_error_bound", "measured_error", "culled_patches"}));
   EXPECT_EQ(summary["patches"], 32);
   EXPECT_LE(summary["measured_error"].get<double>(), summary["error_bound"].get<double>());
   EXPECT_LE(summary["error_bound"].get<double>(), summary["tolerance"].get<double>());
@@ -88,6 +92,54 @@ TEST(Cli, TessellatePrintsExactlyThePromisedJsonAndWritesValidGltf) {
     const CliRun other = patchwork(folder, "tessellate " + teapot + " -o " + quote(gltf.string()) + " " + options);
     ASSERT_EQ(other.exit_code, 0) << options << ": " << other.err;
     EXPECT_TRUE(validates(gltf)) << options;
+  }
+}
+
+TEST(Cli, TessellateReportsTheBoundOfTheFileAsWritten) {
+  // The teapot moved to (1e5, -2e5, 3e4), at an absolute tolerance of 0.002: as plain floats the
+  // positions would round by up to 0.0087, four times the tolerance. The file's bound adds the
+  // (tiny) rounding of positions stored from the box's centre, and every vertex read back is
+  // within it of the vertex the tessellator computed.
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const std::vector<BezierPatch3> patches =
+      testing::moved(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"), Vec3(1e5, -2e5, 3e4));
+  const fs::path moved = folder.path() / "moved.bpt";
+  write_bpt(moved, patches);
+  const fs::path glb = folder.path() / "moved.glb";
+  const fs::path obj = folder.path() / "moved.obj";
+  const CliRun run = patchwork(folder, "tessellate " + quote(moved.string()) + " -o " + quote(glb.string()) +
+                                           " --tolerance 0.002 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json summary = nlohmann::json::parse(run.out);
+  const double bound = summary["error_bound"].get<double>();
+  const double file_bound = summary["file_error_bound"].get<double>();
+  EXPECT_LE(bound, 0.002);
+  EXPECT_GT(file_bound, bound);
+  EXPECT_LT(file_bound - bound, 1e-3 * 0.002);
+  // The same tessellation to OBJ (doubles, exactly): the file's bound is the mesh's.
+  const CliRun to_obj = patchwork(folder, "tessellate " + quote(moved.string()) + " -o " + quote(obj.string()) +
+                                              " --tolerance 0.002 --json");
+  ASSERT_EQ(to_obj.exit_code, 0) << to_obj.err;
+  const nlohmann::json obj_summary = nlohmann::json::parse(to_obj.out);
+  EXPECT_EQ(obj_summary["file_error_bound"].get<double>(), obj_summary["error_bound"].get<double>());
+  EXPECT_EQ(obj_summary["error_bound"].get<double>(), bound);
+  // Every glTF vertex is within the file's rounding of the OBJ's (the same tessellation,
+  // welded): a vertex of the glb at a welded OBJ position, at most file_bound - bound away.
+  const FaceVertexMesh exact = read_mesh(obj);
+  const RenderMesh back = read_gltf(glb);
+  ASSERT_EQ(back.triangle_count(), exact.face_count());
+  double largest = 0;
+  for (std::size_t t = 0; t < back.triangle_count(); ++t) {
+    const auto face = exact.face(t);
+    for (int k = 0; k < 3; ++k) {
+      const double distance = (back.positions[back.indices[3 * t + k]] - exact.position(face[k])).norm();
+      largest = std::max(largest, distance);
+    }
+  }
+  EXPECT_LE(largest, file_bound - bound);
+  EXPECT_GT(largest, 0.0);
+  if (validator_available()) {
+    EXPECT_TRUE(validates(glb));
   }
 }
 
@@ -161,6 +213,32 @@ TEST(Cli, ConvertBetweenMeshFormatsAndGltfKeepsTheMesh) {
   const CliRun bad = patchwork(folder, "convert " + quote(obj.string()) + " " + quote((folder.path() / "x.stl").string()));
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_EQ(lines(bad.err), 1);
+}
+
+TEST(Cli, ConvertTriangulatesANonConvexPolygonToGltf) {
+  // One L-shaped hexagon of area 3, counter-clockwise seen from +z, from corner (2, 1): the fan
+  // from it has a clockwise triangle (2, 1) (1, 1) (1, 2) over the notch, 4 triangles of total
+  // area 4.
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path obj = folder.path() / "l.obj";
+  std::ofstream(obj) << "v 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 0\nv 2 0 0\nf 1 2 3 4 5 6\n";
+  const fs::path glb = folder.path() / "l.glb";
+  const CliRun run = patchwork(folder, "convert " + quote(obj.string()) + " " + quote(glb.string()));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const RenderMesh mesh = read_gltf(glb);
+  ASSERT_EQ(mesh.triangle_count(), 4u);
+  double area = 0;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3& a = mesh.positions[mesh.indices[3 * t]];
+    const Vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+    const Vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
+    const Vec3 n = (b - a).cross(c - a) / 2;  // small integers: exact
+    EXPECT_EQ(n.x(), 0) << t;
+    EXPECT_EQ(n.y(), 0) << t;
+    EXPECT_GT(n.z(), 0) << "triangle " << t << " turns against the polygon";
+    area += std::abs(n.z());
+  }
+  EXPECT_EQ(area, 3.0);
 }
 
 TEST(Cli, SubdivideRefinesAMeshAndTessellatesItsLimit) {

@@ -53,6 +53,22 @@ const std::string ply_header_binary = "ply\nformat binary_little_endian 1.0\nele
                                       "property float y\nproperty float z\nelement face 1\n"
                                       "property list uchar int vertex_indices\nend_header\n";
 
+// A glTF document whose one buffer is the file `uri`.
+std::string gltf_buffer_uri(const std::string& uri) {
+  return R"({"asset": {"version": "2.0"}, "buffers": [{"uri": ")" + uri + R"(", "byteLength": 36}]})";
+}
+
+// A glTF document of one triangle, (0, 0, 0) (1, 0, 0) (0, 1, 0) in a data: URI, held by `nodes`
+// (node 0 the root of scene 0).
+std::string gltf_triangle(const std::string& nodes) {
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": )" + nodes +
+         R"(, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],)"
+         R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],)"
+         R"( "bufferViews": [{"buffer": 0, "byteLength": 36}],)"
+         R"( "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)"
+         R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+}
+
 std::vector<BadInput> bad_inputs() {
   const std::string bpt = patch_header + patch_points(16);
   return {
@@ -79,6 +95,8 @@ std::vector<BadInput> bad_inputs() {
       {"OBJ", "face with two corners", "two.obj", cube_obj + "f 1 2\n", "info two.obj"},
       {"OBJ", "NaN vertex", "nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "info nan.obj"},
       {"OBJ", "non-UTF-8 bytes in a keyword", "latin1.obj", "v 0 0 0\n\xe9\xe8 1 2 3\n", "info latin1.obj"},
+      {"OBJ", "self-intersecting face (a bow-tie) converted to glTF", "bowtie.obj",
+       "v 0 0 0\nv 2 2 0\nv 2 0 0\nv 0 1 0\nf 1 2 3 4\n", "convert bowtie.obj out.glb"},
       {"OFF", "wrong magic", "magic.off", "OF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "info magic.off"},
       {"OFF", "10^12 faces announced", "huge.off", "OFF\n3 1000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
        "info huge.off"},
@@ -94,6 +112,16 @@ std::vector<BadInput> bad_inputs() {
       {"PLY", "no end_header", "header.ply", "ply\nformat ascii 1.0\nelement vertex 1\n", "info header.ply"},
       {"glTF", "not glTF at all", "garbage.glb", std::string("glTF\x02\x00\x00\x00\xff\xff", 10), "convert garbage.glb out.obj"},
       {"glTF", "JSON that is not glTF", "empty.gltf", "{}", "convert empty.gltf out.obj"},
+      {"glTF", "buffer URI going up out of the file's folder", "up.gltf", gltf_buffer_uri("../secret/data.bin"),
+       "convert up.gltf out.obj"},
+      {"glTF", "buffer URI going up, percent-encoded", "encoded.gltf", gltf_buffer_uri("%2e%2e/secret/data.bin"),
+       "convert encoded.gltf out.obj"},
+      {"glTF", "buffer URI an absolute path", "absolute.gltf", gltf_buffer_uri("/etc/passwd"),
+       "convert absolute.gltf out.obj"},
+      {"glTF", "node hierarchy with a cycle", "cycle.gltf",
+       gltf_triangle(R"([{"mesh": 0, "children": [1]}, {"name": "loop", "children": [0]}])"), "convert cycle.gltf out.obj"},
+      {"glTF", "node scale with a zero (a singular transform)", "flat.gltf",
+       gltf_triangle(R"([{"mesh": 0, "scale": [1, 0, 1]}])"), "convert flat.gltf out.obj"},
       // --- geometry and options
       {"mesh", "non-manifold edge (three faces) as a subdivision cage", "book.obj",
        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n", "subdivide book.obj -o out.obj"},

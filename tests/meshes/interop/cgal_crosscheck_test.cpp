@@ -310,7 +310,7 @@ TEST(CgalCrosscheck, OutwardOrientationMatchesSignedVolume) {
     const double diagonal = (c.mesh.positions().colwise().maxCoeff() - c.mesh.positions().colwise().minCoeff()).norm();
     for (const auto& [label, mesh] : {std::pair{"outward", outward}, std::pair{"reversed", test::reversed(outward)}}) {
       SCOPED_TRACE(label);
-      const FaceVertexMesh triangles = test::fan_triangulated(mesh);
+      const FaceVertexMesh triangles = test::triangulated(mesh);
       const CgalSurfaceMesh sm = to_cgal_surface_mesh(triangles);
       const double volume = signed_volume(mesh);
       // For two cubes is_outward_oriented looks at the component with the extreme vertex only;
@@ -320,7 +320,7 @@ TEST(CgalCrosscheck, OutwardOrientationMatchesSignedVolume) {
       EXPECT_NEAR(PMP::volume(sm), volume, 1e-14 * std::pow(diagonal, 3));
     }
     if (c.expected.oriented) {
-      const CgalSurfaceMesh input = to_cgal_surface_mesh(test::fan_triangulated(c.mesh));
+      const CgalSurfaceMesh input = to_cgal_surface_mesh(test::triangulated(c.mesh));
       EXPECT_EQ(PMP::is_outward_oriented(input), signed_volume(c.mesh) > 0);
     }
     ++checked;

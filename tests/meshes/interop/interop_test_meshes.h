@@ -14,6 +14,7 @@
 #include "core/types.h"
 #include "meshes/face_vertex_mesh.h"
 #include "meshes/orientation.h"
+#include "meshes/polygon.h"
 #include "meshes/topology.h"
 #include "tests/meshes/face_lists.h"
 
@@ -73,15 +74,10 @@ inline bool add_face_accepts(const FaceVertexMesh& mesh) {
   return r.edge_manifold && r.faces_repeating_a_vertex.empty() && r.orientable && orient(mesh).flipped.empty();
 }
 
-/// Each polygon fanned into triangles from its first corner (CGAL's is_outward_oriented and
-/// volume want triangles).
-inline FaceVertexMesh fan_triangulated(const FaceVertexMesh& mesh) {
-  std::vector<std::uint32_t> indices;
-  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
-    const auto face = mesh.face(f);
-    for (std::size_t k = 1; k + 1 < face.size(); ++k) indices.insert(indices.end(), {face[0], face[k], face[k + 1]});
-  }
-  return FaceVertexMesh::uniform(mesh.positions(), 3, std::move(indices));
+/// Each polygon triangulated by triangulate_faces (meshes/polygon.h; CGAL's is_outward_oriented
+/// and volume want triangles).
+inline FaceVertexMesh triangulated(const FaceVertexMesh& mesh) {
+  return FaceVertexMesh::uniform(mesh.positions(), 3, triangulate_faces(mesh));
 }
 
 /// Unit cube with corner `origin`, six quads with normals out; vertex x + 2y + 4z.
@@ -214,7 +210,7 @@ inline FaceVertexMesh face_repeating_a_vertex() {
 /// (triangles touching at a corner only).
 inline FaceVertexMesh grid_triangles(std::uint32_t n, std::uint32_t m, const std::vector<bool>& keep,
                                      const std::vector<std::uint32_t>& rotation) {
-  const FaceVertexMesh all = fan_triangulated(disk_grid(n, m));
+  const FaceVertexMesh all = triangulated(disk_grid(n, m));
   std::vector<std::uint32_t> indices;
   for (std::size_t t = 0; t < all.face_count(); ++t) {
     if (!keep[t]) continue;
