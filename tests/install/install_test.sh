@@ -7,11 +7,15 @@
 #   install_test.sh SOURCE_DIR BUILD_DIR CONFIG CMAKE GENERATOR MAKE_PROGRAM CXX
 #
 # Registered by cmake/PatchworkInstall.cmake; exits 77 (skipped) when pkg-config, which
-# scripts/setup installs, is missing. The examples compile at -O0: their build is the test's cost.
+# scripts/setup installs, is missing, and fails then when CI=true. The examples compile at -O0: their build is the test's cost.
 set -euo pipefail
 source_dir=$1 build_dir=$2 config=$3 cmake=$4 generator=$5 make_program=$6 cxx=$7
 
 if ! command -v pkg-config > /dev/null; then
+  if [ "${CI:-}" = true ]; then
+    echo "install_test: pkg-config is not installed, and CI=true: scripts/setup installs it" >&2
+    exit 1
+  fi
   echo "install_test: pkg-config is not installed (scripts/setup installs it): skipped"
   exit 77
 fi
