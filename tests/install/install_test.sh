@@ -37,6 +37,9 @@ quiet() {
 echo "== cmake --install into a temporary prefix"
 quiet "$cmake" --install "$build_dir" --config "$config" --prefix "$prefix"
 
+echo "== the installed modules, as docs/guide.md lists them"
+"$source_dir/tests/install/installed_modules_test.sh" "$source_dir" "$build_dir" "$config" "$cmake" "$prefix"
+
 echo "== the installed files"
 # Every header of every module with a library (module_graph.txt lists the modules; tools is the
 # CLI, report the speed-vs-error report program), except the internal osd_refiner.h; no header that
