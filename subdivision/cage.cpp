@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "core/errors.h"
@@ -40,12 +41,17 @@ void check_topology(const FaceVertexMesh& mesh) {
   // (orient_cage() makes them so). A non-orientable component (a Moebius band, a Klein bottle)
   // has such edges wherever it is cut: OpenSubdiv refines them as non-manifold seams.
   const detail::EdgeTable table(mesh);
-  const detail::OrientationWalk walk = detail::walk_orientation(mesh, table);
+  // Which components are orientable is needed only when one is not.
+  std::optional<detail::OrientationWalk> walk;
+  if (!report.orientable) walk = detail::walk_orientation(mesh, table);
+  const auto orientable = [&](std::uint32_t face) {
+    return !walk || walk->component_orientable[walk->components.of_face[face]];
+  };
   const auto& corners = mesh.face_indices();
   for (std::uint32_t c = 0; c < corners.size(); ++c) {
     const std::uint32_t t = table.twin(c);
     if (t >= detail::EdgeTable::crowded) continue;
-    if (corners[c] == corners[t] && walk.component_orientable[walk.components.of_face[table.face_of(c)]]) {
+    if (corners[c] == corners[t] && orientable(table.face_of(c))) {
       throw TopologyError(detail::message("validate_cage: faces ", table.face_of(c), " and ", table.face_of(t),
                                           " walk edge (", corners[c], ", ", corners[table.next_corner(c)],
                                           ") in the same direction (orient_cage() the cage first)"));

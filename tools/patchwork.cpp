@@ -2,6 +2,7 @@
 // 1 bad input or a failed read or write, with one line on stderr naming the file and the problem.
 
 #include <CLI/CLI.hpp>
+
 #include <exception>
 #include <filesystem>
 #include <iostream>

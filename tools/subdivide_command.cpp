@@ -1,8 +1,9 @@
 #include "tools/subdivide_command.h"
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <cmath>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <ostream>
 
