@@ -123,6 +123,13 @@ if(PATCHWORK_BUILD_TESTS)
   add_test(NAME install_guide_examples
            COMMAND "${PROJECT_SOURCE_DIR}/tests/install/guide_examples_test.sh" "${PROJECT_SOURCE_DIR}")
 endif()
+if(PATCHWORK_BUILD_TESTS)
+  # Every build type installs the same modules, the table of docs/guide.md.
+  add_test(NAME install_modules
+           COMMAND "${PROJECT_SOURCE_DIR}/tests/install/installed_modules_test.sh" "${PROJECT_SOURCE_DIR}"
+                   "${PROJECT_BINARY_DIR}" $<CONFIG> "${CMAKE_COMMAND}")
+  set_tests_properties(install_modules PROPERTIES TIMEOUT 120)
+endif()
 if(PATCHWORK_BUILD_TESTS AND NOT PATCHWORK_SANITIZE)
   # Installs this build into a temporary prefix and builds and runs examples/ against it, with
   # CMake and with pkg-config. It needs the whole build, which ctest runs after.

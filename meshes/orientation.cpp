@@ -18,13 +18,7 @@ std::vector<std::uint32_t> path_to_root(std::uint32_t f, const std::vector<std::
 
 FaceVertexMesh with_flips(const FaceVertexMesh& mesh, const std::vector<bool>& flip) {
   std::vector<std::uint32_t> indices = mesh.face_indices();
-  std::size_t offset = 0;
-  for (std::uint32_t f = 0; f < mesh.face_count(); ++f) {
-    const std::size_t size = mesh.face_sizes()[f];
-    // Reversing all but the first corner keeps the first corner first.
-    if (flip[f]) std::reverse(indices.begin() + static_cast<std::ptrdiff_t>(offset + 1), indices.begin() + static_cast<std::ptrdiff_t>(offset + size));
-    offset += size;
-  }
+  detail::flip_corners(mesh.face_sizes(), flip, indices);
   return FaceVertexMesh(mesh.positions(), mesh.face_sizes(), std::move(indices));
 }
 
@@ -40,6 +34,20 @@ double face_volume6(const FaceVertexMesh& mesh, std::uint32_t f) {
 }  // namespace
 
 namespace detail {
+
+void flip_corners(std::span<const std::uint32_t> face_sizes, const std::vector<bool>& flip,
+                  std::vector<std::uint32_t>& per_corner) {
+  std::size_t offset = 0;
+  for (std::size_t f = 0; f < face_sizes.size(); ++f) {
+    const std::size_t size = face_sizes[f];
+    // Reversing all but the first corner keeps the first corner first.
+    if (flip[f]) {
+      std::reverse(per_corner.begin() + static_cast<std::ptrdiff_t>(offset + 1),
+                   per_corner.begin() + static_cast<std::ptrdiff_t>(offset + size));
+    }
+    offset += size;
+  }
+}
 
 FaceComponents face_components(const FaceVertexMesh& mesh, const EdgeTable& table) {
   UnionFind sets(mesh.face_count());

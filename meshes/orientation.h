@@ -10,6 +10,7 @@
 // orient() is idempotent: on an oriented mesh it flips nothing.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "meshes/face_vertex_mesh.h"
@@ -48,6 +49,11 @@ std::vector<std::uint32_t> face_components(const FaceVertexMesh& mesh);
 namespace detail {
 
 class EdgeTable;
+
+/// Reverses, for every face f with flip[f], its run of `per_corner` (one entry per face corner in
+/// face order: vertex indices, face-varying indices) after the first corner, as orient() flips.
+void flip_corners(std::span<const std::uint32_t> face_sizes, const std::vector<bool>& flip,
+                  std::vector<std::uint32_t>& per_corner);
 
 /// Edge-connected components from an edge table (analyze() and orient() share one table).
 struct FaceComponents {

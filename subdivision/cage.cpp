@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "core/errors.h"
 #include "meshes/edge_table.h"
+#include "meshes/orientation.h"
 #include "meshes/topology.h"
 
 namespace patchwork {
@@ -35,21 +37,24 @@ void check_topology(const FaceVertexMesh& mesh) {
     throw TopologyError(detail::message("validate_cage: vertex ", report.non_manifold_vertices.front(),
                                         " is non-manifold (its faces form more than one fan)"));
   }
-  if (!report.orientable) {
-    throw TopologyError(
-        "validate_cage: the mesh is not orientable (a Moebius band or Klein bottle has no "
-        "consistent normal, and no subdivision surface)");
-  }
-  // Two faces on an edge must walk it in opposite directions.
+  // Two faces on an edge must walk it in opposite directions, in every orientable component
+  // (orient_cage() makes them so). A non-orientable component (a Moebius band, a Klein bottle)
+  // has such edges wherever it is cut: OpenSubdiv refines them as non-manifold seams.
   const detail::EdgeTable table(mesh);
+  // Which components are orientable is needed only when one is not.
+  std::optional<detail::OrientationWalk> walk;
+  if (!report.orientable) walk = detail::walk_orientation(mesh, table);
+  const auto orientable = [&](std::uint32_t face) {
+    return !walk || walk->component_orientable[walk->components.of_face[face]];
+  };
   const auto& corners = mesh.face_indices();
   for (std::uint32_t c = 0; c < corners.size(); ++c) {
     const std::uint32_t t = table.twin(c);
     if (t >= detail::EdgeTable::crowded) continue;
-    if (corners[c] == corners[t]) {
+    if (corners[c] == corners[t] && orientable(table.face_of(c))) {
       throw TopologyError(detail::message("validate_cage: faces ", table.face_of(c), " and ", table.face_of(t),
                                           " walk edge (", corners[c], ", ", corners[table.next_corner(c)],
-                                          ") in the same direction (orient() the mesh first)"));
+                                          ") in the same direction (orient_cage() the cage first)"));
     }
   }
 }
@@ -156,6 +161,21 @@ void validate_cage(const SubdivisionCage& cage) {
     if (!data.values.allFinite()) {
       throw InvalidInput("validate_cage: face-varying data has a value that is not finite");
     }
+  }
+}
+
+void validate_limit_cage(const SubdivisionCage& cage, const char* function) {
+  validate_cage(cage);
+  const detail::EdgeTable table(cage.mesh);
+  const detail::OrientationWalk walk = detail::walk_orientation(cage.mesh, table);
+  const auto non_orientable = std::find(walk.component_orientable.begin(), walk.component_orientable.end(), false);
+  if (non_orientable != walk.component_orientable.end()) {
+    const auto component = static_cast<std::size_t>(non_orientable - walk.component_orientable.begin());
+    const auto face = std::find(walk.components.of_face.begin(), walk.components.of_face.end(), component) -
+                      walk.components.of_face.begin();
+    throw TopologyError(detail::message(function, ": the cage is not orientable (the component of face ", face,
+                                        "; a Moebius band or Klein bottle): its limit surface has no consistent "
+                                        "normal and is not supported; uniform refinement is"));
   }
 }
 

@@ -21,7 +21,8 @@
 //
 // validate_cage() checks everything before OpenSubdiv sees it: OpenSubdiv clamps some values
 // silently and accepts topology (non-manifold, inconsistently oriented) whose limit surface is
-// not a surface.
+// not a surface. A non-orientable cage (Moebius band, Klein bottle) refines uniformly; its limit
+// surface is refused (validate_limit_cage()).
 
 #include <cstdint>
 #include <optional>
@@ -87,13 +88,21 @@ struct SubdivisionCage {
 /// The sharpness OpenSubdiv treats as infinite.
 inline constexpr double infinitely_sharp = 10.0;
 
-/// Checks that the cage can be subdivided: at least one face; a manifold, consistently oriented
-/// mesh (each edge in at most two faces, walked in opposite directions, every vertex one fan);
-/// triangles only for Loop, no two of them on the same three vertices; creases on cage edges, corners and holes in range, sharpness >= 0
-/// and not NaN; vertex data with one row per vertex; face-varying indices one per corner and in
+/// Checks that the cage can be subdivided: at least one face; a manifold mesh (each edge in at
+/// most two faces, every vertex one fan) whose orientable components are consistently oriented
+/// (the two faces of an edge walk it in opposite directions; orient_cage() makes them so);
+/// non-orientable components are accepted (OpenSubdiv refines an edge walked the same way by
+/// both its faces as a non-manifold seam, an infinitely sharp edge);
+/// triangles only for Loop, no two of them on the same three vertices; creases on cage edges, corners and holes in
+/// range, sharpness >= 0 and not NaN; vertex data with one row per vertex; face-varying indices one per corner and in
 /// range; every value finite.
 /// \throws TopologyError for the connectivity, InvalidInput for the rest, naming the element.
 void validate_cage(const SubdivisionCage& cage);
+
+/// validate_cage(), and every component orientable, as the limit surface needs (a consistent
+/// normal): the check of LimitSurface and limit_at_vertices, named `function` in the message.
+/// \throws what validate_cage() throws; TopologyError for a non-orientable cage.
+void validate_limit_cage(const SubdivisionCage& cage, const char* function);
 
 /// Readable scheme name: "catmull-clark", "loop", "bilinear".
 const char* scheme_name(SubdivisionScheme scheme);

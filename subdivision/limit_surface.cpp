@@ -44,6 +44,7 @@ std::array<Vec3, 4> bspline_to_bezier(const std::array<Vec3, 4>& p) {
 }  // namespace
 
 VertexLimits limit_at_vertices(const SubdivisionCage& cage) {
+  validate_limit_cage(cage, "limit_at_vertices");
   auto refiner = detail::make_refiner(cage);
   const std::vector<Point3> source = cage_points(cage.mesh);
   std::vector<Point3> position(source.size(), Point3{{0, 0, 0}});
@@ -207,7 +208,7 @@ LimitSurface::LimitSurface(const SubdivisionCage& cage, int isolation_level) : i
   if (isolation_level < 1 || isolation_level > 10) {
     throw InvalidInput(detail::message("LimitSurface: isolation level ", isolation_level, " is not in 1..10"));
   }
-  validate_cage(cage);
+  validate_limit_cage(cage, "LimitSurface");
   Impl& impl = *impl_;
   impl.level = isolation_level;
   const auto& sizes = cage.mesh.face_sizes();

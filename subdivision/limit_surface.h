@@ -50,13 +50,15 @@ struct VertexLimits {
 inline constexpr int default_isolation_level = 4;
 
 /// Limit positions and tangents of every vertex of `cage` (OpenSubdiv's limit masks, at level 0).
-/// Vertices that no face uses, or only holes, get zeros. \throws what validate_cage() throws.
+/// Vertices that no face uses, or only holes, get zeros.
+/// \throws what validate_limit_cage() throws (a non-orientable cage too).
 VertexLimits limit_at_vertices(const SubdivisionCage& cage);
 
 class LimitSurface {
  public:
   /// Adaptively refines `cage` to `isolation_level` and builds its patch table.
-  /// \throws what validate_cage() throws; InvalidInput unless 1 <= isolation_level <= 10.
+  /// \throws what validate_limit_cage() throws (a non-orientable cage too); InvalidInput unless
+  ///         1 <= isolation_level <= 10.
   explicit LimitSurface(const SubdivisionCage& cage, int isolation_level = default_isolation_level);
   ~LimitSurface();
   LimitSurface(LimitSurface&&) noexcept;

@@ -129,8 +129,8 @@ std::int64_t refined_face_count(const FaceVertexMesh& mesh, SubdivisionScheme sc
 
 TopologyReport refined_topology(const FaceVertexMesh& cage, const TopologyReport& report, SubdivisionScheme scheme,
                                 int levels) {
-  if (!report.manifold || report.isolated_vertices != 0) {
-    throw InvalidInput("refined_topology: the cage must be a manifold without isolated vertices");
+  if (!report.manifold || report.isolated_vertices != 0 || !report.orientable) {
+    throw InvalidInput("refined_topology: the cage must be an orientable manifold without isolated vertices");
   }
   std::vector<Count> corners(report.per_component.size(), 0);
   const std::vector<std::uint32_t> component = face_components(cage);
@@ -310,9 +310,10 @@ UniformRefinement refine_uniform(const SubdivisionCage& cage, int levels) {
   }
   UniformRefinement refinement{std::move(result), {}, levels};
   // Without holes the report follows from the cage's (validated manifold) by the closed forms;
-  // the tests check it against analyze() of the refined mesh.
+  // the tests check it against analyze() of the refined mesh. A non-orientable cage gets
+  // analyze(): its proving cycle is one of the refined faces.
   const TopologyReport cage_report = analyze(cage.mesh);
-  refinement.topology = cage.holes.empty() && cage_report.isolated_vertices == 0
+  refinement.topology = cage.holes.empty() && cage_report.isolated_vertices == 0 && cage_report.orientable
                             ? refined_topology(cage.mesh, cage_report, cage.options.scheme, levels)
                             : analyze(surface_faces(refinement.cage));
   return refinement;

@@ -24,7 +24,8 @@ struct UniformRefinement {
   /// The level-k mesh with its data and tags (hole faces included and listed in cage.holes).
   SubdivisionCage cage;
   /// The topology of the surface, the level-k faces that are not holes: refined_topology() of the
-  /// cage's (analyze() of the result where the cage has holes or isolated vertices).
+  /// cage's (analyze() of the result where the cage has holes or isolated vertices or is not
+  /// orientable).
   TopologyReport topology;
   int level;
 };
@@ -32,12 +33,13 @@ struct UniformRefinement {
 /// The number of faces uniform refinement to `levels` produces (closed form, no refinement).
 std::int64_t refined_face_count(const FaceVertexMesh& mesh, SubdivisionScheme scheme, int levels);
 
-/// The topology of `cage` (a manifold without isolated vertices, with `report` = analyze(cage))
+/// The topology of `cage` (an orientable manifold without isolated vertices, with `report` =
+/// analyze(cage); a non-orientable one's proving cycle would have to be found among the refined faces)
 /// after `levels` levels of `scheme`, without refining: subdivision keeps every component's chi,
 /// genus, boundary loops and orientability, and the counts follow the closed forms per
 /// component (quad schemes: V' = V + E + F, E' = 2E + C, F' = C for C face corners, then C = 4F;
 /// Loop: V' = V + E, E' = 2E + 3F, F' = 4F; boundary edges double).
-/// \throws InvalidInput if the report is not of a manifold without isolated vertices.
+/// \throws InvalidInput if the report is not of an orientable manifold without isolated vertices.
 TopologyReport refined_topology(const FaceVertexMesh& cage, const TopologyReport& report, SubdivisionScheme scheme,
                                 int levels);
 

@@ -1,6 +1,7 @@
 #pragma once
-// `patchwork curve-demo`: what the curves module does, with speed and error printed. It stands
-// in for the main job (tessellating the teapot) until the tessellator exists.
+// `patchwork curve-demo`: what the curves module does, with speed and error printed: plain and
+// compensated de Casteljau near a root of high multiplicity, the arc length of an exact rational
+// circle, and evaluation speed. The main job, tessellating patch sets, is `patchwork tessellate`.
 
 #include <iosfwd>
 

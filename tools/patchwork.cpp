@@ -8,23 +8,33 @@
 #include <iostream>
 #include <string>
 
+#include "core/errors.h"
 #include "tools/convert_command.h"
 #include "tools/curve_demo.h"
+#include "tools/default_tolerance.h"
 #include "tools/info_command.h"
 #include "tools/patches_command.h"
 #include "tools/subdivide_command.h"
 #include "tools/tessellate_command.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"patchwork: Bezier curves, patches and meshes"};
+  CLI::App app{
+      "patchwork: Bezier patch sets to render-ready meshes within a guaranteed error; meshes, subdivision "
+      "surfaces and curves"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "patchwork 0.1.0");
 
   int degree = 20;
   long evaluations = 2'000'000;
-  CLI::App* demo = app.add_subcommand("curve-demo", "Accuracy and speed of the curves module");
-  demo->add_option("--degree", degree, "Degree of the hard-case polynomial")->check(CLI::Range(2, 33));
-  demo->add_option("--evaluations", evaluations, "Evaluations timed per method")->check(CLI::Range(1000L, 1'000'000'000L));
+  CLI::App* demo = app.add_subcommand(
+      "curve-demo",
+      "Accuracy and speed of the curves module (a root of high multiplicity, arc length, evaluation speed)");
+  demo->add_option("--degree", degree, "Degree of the hard-case polynomial (the multiplicity of its root)")
+      ->check(CLI::Range(2, 33))
+      ->capture_default_str();
+  demo->add_option("--evaluations", evaluations, "Evaluations timed per method")
+      ->check(CLI::Range(1000L, 1'000'000'000L))
+      ->capture_default_str();
 
   std::string patch_file;
   bool json = false;
@@ -38,28 +48,35 @@ int main(int argc, char** argv) {
   info->add_option("file", info_file, "Mesh or BPT file")->required();
   info->add_flag("--json", info_json, "Print the report as JSON");
 
+  const std::string default_relative_text = patchwork::detail::message(patchwork::tools::default_relative_tolerance);
   patchwork::tools::TessellateArguments tess;
   CLI::App* tessellate = app.add_subcommand("tessellate", "Patch set (BPT) to a render-ready mesh within an error");
   tessellate->add_option("input", tess.input, "BPT file")->required();
   tessellate->add_option("-o,--output", tess.output, "Output .glb, .gltf, .obj, .off or .ply")->required();
   auto* tolerance = tessellate->add_option("--tolerance", tess.tolerance, "Absolute tolerance (model units)");
   auto* relative = tessellate->add_option("--relative-tolerance", tess.relative_tolerance,
-                                          "Tolerance relative to the bounding-box diagonal");
+                                          "Tolerance relative to the tight bounding-box diagonal (the default, " +
+                                              default_relative_text + ", when no other mode is given)");
   auto* segments = tessellate->add_option("--segments", tess.segments, "Uniform N x N grid per patch");
   auto* camera = tessellate->add_option("--camera", tess.camera,
                                         "eye=x,y,z target=x,y,z fov=deg width=px height=px [up=x,y,z]")
                      ->expected(5, 6);
-  tessellate->add_option("--pixel-tolerance", tess.pixel_tolerance, "Tolerance in pixels with --camera");
+  tessellate
+      ->add_option("--pixel-tolerance", tess.pixel_tolerance,
+                   "Tolerance in pixels with --camera (and of --lod's screen coverages)")
+      ->capture_default_str();
   tolerance->excludes(relative, segments, camera);
   relative->excludes(segments, camera);
   segments->excludes(camera);
-  tessellate->add_option("--threads", tess.threads, "Threads (0: all cores)");
-  tessellate->add_option("--uv", tess.uv, "UVs: none, patch (surface parameters) or atlas");
+  tessellate->add_option("--threads", tess.threads, "Threads (0: all cores)")->capture_default_str();
+  tessellate->add_option("--uv", tess.uv, "UVs: none, patch (surface parameters) or atlas")->capture_default_str();
   tessellate->add_flag("--tangents", tess.tangents, "Write glTF TANGENT");
   tessellate->add_flag("--no-split", tess.no_split,
                        "One grid per patch (by default patches split 2 x 2 or 4 x 4 where that saves triangles)");
-  tessellate->add_option("--crease-angle", tess.crease_angle_degrees,
-                         "Split vertices where normals differ by more than this (degrees)");
+  tessellate
+      ->add_option("--crease-angle", tess.crease_angle_degrees,
+                   "Split vertices where normals differ by more than this (degrees)")
+      ->capture_default_str();
   tessellate->add_option("--lod", tess.lod_factors,
                          "Coarser levels of detail in the glTF file (MSFT_lod), each this factor times the tolerance")
       ->delimiter(',');
@@ -67,25 +84,34 @@ int main(int argc, char** argv) {
                        "Print the summary as JSON (error_bound: the mesh's; file_error_bound: the file's, adding "
                        "the float rounding of glTF positions)");
   tessellate->add_option("--max-triangles", tess.max_triangles, "Refuse to make more triangles than this")
-      ->check(CLI::Range(std::int64_t{1}, std::int64_t{2'000'000'000}));
+      ->check(CLI::Range(std::int64_t{1}, std::int64_t{2'000'000'000}))
+      ->capture_default_str();
 
   patchwork::tools::SubdivideArguments sub;
-  CLI::App* subdivide = app.add_subcommand("subdivide", "Subdivision surfaces (OpenSubdiv): refine a mesh, or tessellate its limit");
+  CLI::App* subdivide = app.add_subcommand(
+      "subdivide",
+      "Subdivision surfaces (OpenSubdiv): refine a mesh, or tessellate its limit; wrongly wound faces are flipped "
+      "(and said so on stderr)");
   subdivide->add_option("input", sub.input, "Cage mesh (.obj, .off, .ply, .glb, .gltf)")->required();
   subdivide->add_option("-o,--output", sub.output, "Output .obj, .off, .ply, .glb or .gltf")->required();
-  subdivide->add_option("--scheme", sub.scheme, "catmull-clark, loop or bilinear");
-  subdivide->add_option("--levels", sub.levels, "Uniform refinement levels (0..10)");
-  subdivide->add_option("--boundary", sub.boundary, "Boundary interpolation: none, edges, edges-and-corners");
+  subdivide->add_option("--scheme", sub.scheme, "catmull-clark, loop or bilinear")->capture_default_str();
+  subdivide->add_option("--levels", sub.levels, "Uniform refinement levels (0..10; default 1, or 0 with --limit)");
+  subdivide->add_option("--boundary", sub.boundary, "Boundary interpolation: none, edges, edges-and-corners")
+      ->capture_default_str();
   subdivide->add_option("--sharp-angle", sub.sharp_angle_degrees,
-                        "Edges whose faces meet at more than this angle (degrees) stay infinitely sharp");
+                        "Edges whose faces meet at more than this angle (degrees) become infinitely sharp creases");
   subdivide->add_flag("--limit", sub.limit, "Write the limit surface, tessellated");
   auto* sub_tolerance = subdivide->add_option("--tolerance", sub.tolerance, "With --limit: absolute tolerance");
-  auto* sub_relative = subdivide->add_option("--relative-tolerance", sub.relative_tolerance,
-                                             "With --limit: tolerance relative to the bounding-box diagonal");
+  auto* sub_relative =
+      subdivide->add_option("--relative-tolerance", sub.relative_tolerance,
+                            "With --limit: tolerance relative to the cage's bounding-box diagonal (the "
+                            "default, " +
+                                default_relative_text + ", when no other mode is given)");
   auto* sub_segments = subdivide->add_option("--segments", sub.segments, "With --limit: uniform N x N per face");
   sub_tolerance->excludes(sub_relative, sub_segments);
   sub_relative->excludes(sub_segments);
-  subdivide->add_option("--isolation", sub.isolation_level, "With --limit: adaptive isolation level (1..10)");
+  subdivide->add_option("--isolation", sub.isolation_level, "With --limit: adaptive isolation level (1..10)")
+      ->capture_default_str();
   subdivide->add_flag("--json", sub.json, "Print the summary as JSON");
 
   std::string convert_input;
@@ -106,6 +132,16 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   }
+  // The file a command reads, named in every error line (ParseError and IoError name theirs).
+  const auto input_file = [&]() -> const std::string& {
+    static const std::string none;
+    if (patches->parsed()) return patch_file;
+    if (info->parsed()) return info_file;
+    if (convert->parsed()) return convert_input;
+    if (subdivide->parsed()) return sub.input;
+    if (tessellate->parsed()) return tess.input;
+    return none;
+  };
   try {
     if (demo->parsed()) patchwork::tools::run_curve_demo(std::cout, degree, evaluations);
     if (patches->parsed()) patchwork::tools::run_patches_report(std::cout, patch_file, json);
@@ -118,16 +154,20 @@ int main(int argc, char** argv) {
       }
     }
     if (convert->parsed()) patchwork::tools::run_convert(convert_input, convert_output);
-    if (subdivide->parsed()) patchwork::tools::run_subdivide(std::cout, sub);
+    if (subdivide->parsed()) patchwork::tools::run_subdivide(std::cout, std::cerr, sub);
     if (tessellate->parsed()) {
-      if (!tess.tolerance && !tess.relative_tolerance && !tess.segments && tess.camera.empty()) {
-        std::cerr << "patchwork tessellate: give one of --tolerance, --relative-tolerance, --segments, --camera\n";
-        return 2;
-      }
       patchwork::tools::run_tessellate(std::cout, std::cerr, tess);
     }
+  } catch (const patchwork::ParseError& error) {
+    std::cerr << "patchwork: " << error.what() << "\n";  // "path:line:column: message"
+    return 1;
+  } catch (const patchwork::IoError& error) {
+    std::cerr << "patchwork: " << error.what() << "\n";  // "path: message"
+    return 1;
   } catch (const std::exception& error) {
-    std::cerr << "patchwork: " << error.what() << "\n";
+    // Library errors name the function and the element; the line names the file being processed.
+    const std::string& file = input_file();
+    std::cerr << "patchwork: " << (file.empty() ? "" : file + ": ") << error.what() << "\n";
     return 1;
   }
   return 0;

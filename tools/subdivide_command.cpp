@@ -13,7 +13,9 @@
 #include "meshes/edge_table.h"
 #include "meshes/normals.h"
 #include "subdivision/limit_tessellator.h"
+#include "subdivision/orient_cage.h"
 #include "subdivision/refine.h"
+#include "tools/default_tolerance.h"
 #include "tools/output_files.h"
 
 namespace patchwork::tools {
@@ -53,7 +55,7 @@ std::string genus_text(const std::optional<Count>& genus) {
 
 }  // namespace
 
-void run_subdivide(std::ostream& out, const SubdivideArguments& arguments) {
+void run_subdivide(std::ostream& out, std::ostream& notes, const SubdivideArguments& arguments) {
   // Everything is checked before anything is read or written.
   check_mesh_output("subdivide", arguments.output);
   SubdivisionCage cage;
@@ -65,15 +67,29 @@ void run_subdivide(std::ostream& out, const SubdivideArguments& arguments) {
   }
   const int modes = arguments.tolerance.has_value() + arguments.relative_tolerance.has_value() +
                     arguments.segments.has_value();
-  if (arguments.limit && modes != 1) {
-    throw InvalidInput("subdivide --limit: give one of --tolerance, --relative-tolerance, --segments");
-  }
+  if (modes > 1) throw InvalidInput("subdivide --limit: give one of --tolerance, --relative-tolerance, --segments");
   if (!arguments.limit && modes != 0) {
     throw InvalidInput("subdivide: --tolerance, --relative-tolerance and --segments need --limit");
   }
   cage.mesh = is_gltf(arguments.input) ? welded_faces(read_gltf(arguments.input)) : read_mesh(arguments.input);
+  // Faces wound the wrong way are flipped (the fewest, per component) and the user is told.
+  const CageOrientation oriented = orient_cage(cage);
+  cage = oriented.cage;
+  if (arguments.limit) validate_limit_cage(cage, "subdivide --limit");
   if (arguments.sharp_angle_degrees) cage.creases = sharp_edges(cage.mesh, *arguments.sharp_angle_degrees);
   const std::size_t cage_faces = cage.mesh.face_count();
+  // Said once the output is written (an error line stays the only line).
+  const auto note_orientation = [&] {
+    if (!oriented.flipped.empty()) {
+      notes << "patchwork: " << arguments.input << ": " << oriented.flipped.size() << " of " << cage_faces
+            << " faces flipped to orient the mesh consistently\n";
+    }
+    if (oriented.non_orientable_components > 0) {
+      notes << "patchwork: " << arguments.input << ": the mesh is not orientable; its " << oriented.seam_edges
+            << (oriented.seam_edges == 1 ? " edge" : " edges")
+            << " walked the same way by both faces refined as a non-manifold seam (infinitely sharp)\n";
+    }
+  };
 
   const auto start = std::chrono::steady_clock::now();
   UniformRefinement refined = refine_uniform(cage, levels);
@@ -86,6 +102,7 @@ void run_subdivide(std::ostream& out, const SubdivideArguments& arguments) {
   if (!arguments.limit) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     write_polygon_mesh(arguments.output, surface_faces(refined.cage));
+    note_orientation();
     const TopologyReport& t = refined.topology;
     summary.update({{"faces", t.faces}, {"vertices", t.vertices}, {"euler", t.euler}, {"genus", nullptr},
                     {"boundary_loops", t.boundary_loops}, {"seconds", seconds}});
@@ -106,8 +123,10 @@ void run_subdivide(std::ostream& out, const SubdivideArguments& arguments) {
 
   const LimitSurface surface(refined.cage, arguments.isolation_level);
   TessellationOptions options;
+  // No mode given: the default relative tolerance (named in --help and in the summary).
+  const bool default_tolerance = modes == 0;
   options.tolerance = arguments.tolerance;
-  options.relative_tolerance = arguments.relative_tolerance;
+  options.relative_tolerance = relative_tolerance_or_default(arguments.relative_tolerance, default_tolerance);
   options.segments = arguments.segments;
   const Tessellation result = tessellate_limit(surface, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -120,6 +139,7 @@ void run_subdivide(std::ostream& out, const SubdivideArguments& arguments) {
   } else {
     write_mesh(arguments.output, welded_faces(result.mesh));
   }
+  note_orientation();
   summary.update({{"patches", surface.patch_count()},
                   {"triangles", result.mesh.triangle_count()},
                   {"vertices", result.mesh.vertex_count()},
@@ -146,7 +166,8 @@ void run_subdivide(std::ostream& out, const SubdivideArguments& arguments) {
   if (arguments.segments) {
     out << "  tolerance:      none (uniform " << *arguments.segments << " x " << *arguments.segments << " per face)\n";
   } else {
-    out << "  tolerance:      " << result.tolerance << "\n";
+    out << "  tolerance:      " << tolerance_summary(result.tolerance, options.relative_tolerance, default_tolerance)
+        << "\n";
   }
   if (std::isfinite(result.error_bound)) {
     out << "  error bound:    " << result.error_bound << " (guaranteed)\n";

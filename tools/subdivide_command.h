@@ -2,7 +2,8 @@
 // `patchwork subdivide IN.(obj|off|ply) --scheme S --levels K -o OUT`: uniform subdivision
 // through OpenSubdiv (subdivision/refine.h), written as a polygon mesh (glTF: fanned, with
 // normals); with --limit the limit surface tessellated within a tolerance instead
-// (subdivision/limit_tessellator.h), a render-ready mesh like the teapot's.
+// (subdivision/limit_tessellator.h; relative tolerance 1e-3 unless a mode is given), a render-ready
+// mesh like the teapot's.
 
 #include <iosfwd>
 #include <optional>
@@ -28,9 +29,11 @@ struct SubdivideArguments {
   bool json = false;
 };
 
-/// Runs the command; the summary goes to `out`.
+/// Runs the command; the summary goes to `out`, and to `notes` (stderr) one line each when faces
+/// were flipped to orient the cage consistently (subdivision/orient_cage.h) or the cage is not
+/// orientable (refined with its seams; --limit refuses it).
 /// \throws InvalidInput for bad arguments or a cage that cannot be subdivided (TopologyError),
 ///         IoError/ParseError for bad files (nothing written).
-void run_subdivide(std::ostream& out, const SubdivideArguments& arguments);
+void run_subdivide(std::ostream& out, std::ostream& notes, const SubdivideArguments& arguments);
 
 }  // namespace patchwork::tools

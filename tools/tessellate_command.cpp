@@ -18,6 +18,7 @@
 #include "io/mesh_file.h"
 #include "surfaces/patch_bounding_box.h"
 #include "surfaces/tessellator.h"
+#include "tools/default_tolerance.h"
 #include "tools/output_files.h"
 
 namespace patchwork::tools {
@@ -128,8 +129,11 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   check_mesh_output("tessellate", arguments.output);
   const bool gltf = is_gltf(arguments.output);
   TessellationOptions options;
+  // No mode given: the default relative tolerance (named in --help and in the summary).
+  const bool default_tolerance =
+      !arguments.tolerance && !arguments.relative_tolerance && !arguments.segments && arguments.camera.empty();
   options.tolerance = arguments.tolerance;
-  options.relative_tolerance = arguments.relative_tolerance;
+  options.relative_tolerance = relative_tolerance_or_default(arguments.relative_tolerance, default_tolerance);
   options.segments = arguments.segments;
   if (!arguments.camera.empty()) options.camera = parse_camera(arguments.camera);
   options.pixel_tolerance = arguments.pixel_tolerance;
@@ -142,7 +146,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   if (arguments.threads < 0) throw InvalidInput(detail::message("--threads ", arguments.threads, " is negative"));
   if (!arguments.lod_factors.empty()) {
     if (!gltf) throw InvalidInput("--lod: levels of detail need a .glb or .gltf output");
-    if (!arguments.tolerance && !arguments.relative_tolerance) {
+    if (!options.tolerance && !options.relative_tolerance) {
       throw InvalidInput("--lod: levels of detail need --tolerance or --relative-tolerance");
     }
     for (std::size_t k = 0; k < arguments.lod_factors.size(); ++k) {
@@ -208,7 +212,8 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   if (arguments.segments) {
     out << "  tolerance:      none (uniform " << *arguments.segments << " x " << *arguments.segments << " per patch)\n";
   } else {
-    out << "  tolerance:      " << result.tolerance << "\n";
+    out << "  tolerance:      " << tolerance_summary(result.tolerance, options.relative_tolerance, default_tolerance)
+        << "\n";
   }
   out << "  error bound:    " << result.error_bound << " (guaranteed)\n";
   out << "  file bound:     " << file_error_bound << " (guaranteed for the file: + " << rounding[0]

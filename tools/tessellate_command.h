@@ -1,10 +1,11 @@
 #pragma once
-// `patchwork tessellate IN.bpt -o OUT.(glb|gltf|obj|off|ply) (--tolerance E |
-// --relative-tolerance R | --segments N | --camera ... --pixel-tolerance T) [--threads T]
+// `patchwork tessellate IN.bpt -o OUT.(glb|gltf|obj|off|ply) [--tolerance E |
+// --relative-tolerance R | --segments N | --camera ... --pixel-tolerance T] [--threads T]
 // [--uv none|patch|atlas] [--tangents] [--no-split] [--crease-angle DEG] [--lod F1,F2,...] [--json]`.
+// Without a mode the relative tolerance is 1e-3 (tools/default_tolerance.h), and the summary says so.
 //
 // Prints patches, triangles, vertices, seconds (the tessellation alone, every level with --lod), the absolute tolerance,
-// the a-priori error bound, the file's bound, the measured error and the culled patches; with
+// the guaranteed error bound, the file's bound, the measured error and the culled patches; with
 // --json one object with exactly the keys patches, triangles, vertices, seconds, tolerance,
 // error_bound, file_error_bound, measured_error, culled_patches. error_bound is the mesh's (in
 // double); file_error_bound is the file's: error_bound plus the bound on the float rounding of
@@ -42,7 +43,7 @@ struct TessellateArguments {
   bool no_split = false;
   double crease_angle_degrees = 1.0;
   /// Coarser levels of detail: level k at lod_factors[k-1] times the tolerance (increasing,
-  /// each > 1); glTF output only, with --tolerance or --relative-tolerance.
+  /// each > 1); glTF output only, with a tolerance (given, or the default relative one).
   std::vector<double> lod_factors;
   bool json = false;
   /// Refuse above this many triangles (the message gives the count needed).

@@ -7,11 +7,15 @@
 #   install_test.sh SOURCE_DIR BUILD_DIR CONFIG CMAKE GENERATOR MAKE_PROGRAM CXX
 #
 # Registered by cmake/PatchworkInstall.cmake; exits 77 (skipped) when pkg-config, which
-# scripts/setup installs, is missing. The examples compile at -O0: their build is the test's cost.
+# scripts/setup installs, is missing, and fails then when CI=true. The examples compile at -O0: their build is the test's cost.
 set -euo pipefail
 source_dir=$1 build_dir=$2 config=$3 cmake=$4 generator=$5 make_program=$6 cxx=$7
 
 if ! command -v pkg-config > /dev/null; then
+  if [ "${CI:-}" = true ]; then
+    echo "install_test: pkg-config is not installed, and CI=true: scripts/setup installs it" >&2
+    exit 1
+  fi
   echo "install_test: pkg-config is not installed (scripts/setup installs it): skipped"
   exit 77
 fi
@@ -32,6 +36,9 @@ quiet() {
 
 echo "== cmake --install into a temporary prefix"
 quiet "$cmake" --install "$build_dir" --config "$config" --prefix "$prefix"
+
+echo "== the installed modules, as docs/guide.md lists them"
+"$source_dir/tests/install/installed_modules_test.sh" "$source_dir" "$build_dir" "$config" "$cmake" "$prefix"
 
 echo "== the installed files"
 # Every header of every module with a library (module_graph.txt lists the modules; tools is the

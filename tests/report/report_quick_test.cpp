@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "tests/support/ci_environment.h"
 #include "tests/support/temporary_directory.h"
 
 namespace patchwork {
@@ -35,14 +36,16 @@ TEST(ReportQuick, WritesEverySectionWithMeasuredRows) {
   EXPECT_NE(md.find("| r = 0.001 |"), std::string::npos);
   EXPECT_TRUE(fs::exists(data / "patchwork_adaptive.dat"));
   EXPECT_TRUE(fs::exists(data / "plots.gp"));
-  if (fs::exists(fs::path(PATCHWORK_SOURCE_DIR) / "report/threejs/node_modules/three") && command_exists("node")) {
+  if (testing::tool_available(
+          fs::exists(fs::path(PATCHWORK_SOURCE_DIR) / "report/threejs/node_modules/three") && command_exists("node"),
+          "node or three.js (report/threejs/node_modules)")) {
     EXPECT_TRUE(fs::exists(data / "three_js.dat"));
     EXPECT_EQ(md.find("Not run: the npm"), std::string::npos);
   }
 #ifdef PATCHWORK_HAVE_OCCT
   EXPECT_TRUE(fs::exists(data / "open_cascade.dat"));
 #endif
-  if (command_exists("gnuplot")) {
+  if (testing::tool_available(command_exists("gnuplot"), "gnuplot")) {
     EXPECT_TRUE(fs::exists(data / "error_vs_triangles.png"));
     EXPECT_TRUE(fs::exists(data / "error_vs_time.png"));
   }

@@ -7,7 +7,10 @@
 #include <rapidcheck/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <numbers>
+#include <set>
 
 #include "core/errors.h"
 #include "meshes/render_mesh.h"
@@ -162,10 +165,152 @@ RC_GTEST_PROP(Subdivision, TopologyIsKeptAtEveryLevel, ()) {
   RC_ASSERT(to_json(report) == to_json(analyze(refined.cage.mesh)));
 }
 
-RC_GTEST_PROP(Subdivision, NonOrientableAndNonManifoldCagesAreRefused, ()) {
+// Non-orientable cages (Moebius band, Klein bottle, projective plane, hemi-cube) refine
+// uniformly: OpenSubdiv takes an edge walked the same way by its two faces as a non-manifold
+// seam. The surface keeps its chi and boundary and stays non-orientable; its limit surface is
+// refused.
+RC_GTEST_PROP(Subdivision, NonOrientableCagesRefineUniformly, ()) {
   testing::Random random(*rc::gen::arbitrary<std::uint64_t>());
   const testing::KnownSurface surface = testing::non_orientable_surface(random);
-  RC_ASSERT(!error_message<TopologyError>([&] { refine_uniform(cage_of(surface.mesh), 1); }).empty());
+  const bool triangles = surface.mesh.face_sizes()[0] == 3;
+  const auto scheme = triangles && random.coin()
+                          ? SubdivisionScheme::loop
+                          : (random.coin() ? SubdivisionScheme::catmull_clark : SubdivisionScheme::bilinear);
+  const int levels = 1 + static_cast<int>(random.below(3));
+  const UniformRefinement refined = refine_uniform(cage_of(surface.mesh, scheme), levels);
+  const TopologyReport& report = refined.topology;
+  RC_ASSERT(report.euler == surface.euler);
+  RC_ASSERT(report.boundary_loops == surface.boundary_loops);
+  RC_ASSERT(report.components == surface.components);
+  RC_ASSERT(!report.orientable);
+  RC_ASSERT(report.manifold);
+  RC_ASSERT(!report.genus.has_value());
+  RC_ASSERT(report.faces == refined_face_count(surface.mesh, scheme, levels));
+  RC_ASSERT(to_json(report) == to_json(analyze(refined.cage.mesh)));
+  RC_ASSERT(refined.cage.mesh.positions().allFinite());
+  const std::string message = error_message<TopologyError>([&] { LimitSurface limit(cage_of(surface.mesh, scheme)); });
+  RC_ASSERT(message.find("LimitSurface: the cage is not orientable") != std::string::npos);
+  RC_ASSERT(!error_message<TopologyError>([&] { limit_at_vertices(cage_of(surface.mesh, scheme)); }).empty());
+}
+
+// The bilinear scheme's new points are exact: the old vertices, the edges' midpoints and the
+// faces' centroids (of its corners), as a multiset, whatever the winding.
+std::vector<Vec3> bilinear_points(const FaceVertexMesh& mesh) {
+  std::vector<Vec3> points = testing::points_of(mesh);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto face = mesh.face(f);
+    Vec3 centroid = Vec3::Zero();
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      centroid += mesh.position(face[k]);
+      const std::uint32_t a = face[k], b = face[(k + 1) % face.size()];
+      if (edges.insert({std::min(a, b), std::max(a, b)}).second) {
+        points.push_back((mesh.position(a) + mesh.position(b)) / 2);
+      }
+    }
+    points.push_back(centroid / static_cast<double>(face.size()));
+  }
+  return points;
+}
+
+// The distance from p to the nearest of `points` (brute force).
+double nearest_distance(const Vec3& p, const std::vector<Vec3>& points) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Vec3& q : points) nearest = std::min(nearest, (p - q).norm());
+  return nearest;
+}
+
+// The largest distance from a point of `a` to the nearest of `b`, and back.
+double hausdorff_of_points(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  const auto one_way = [](const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
+    double worst = 0;
+    for (const Vec3& p : from) worst = std::max(worst, nearest_distance(p, to));
+    return worst;
+  };
+  return std::max(one_way(a, b), one_way(b, a));
+}
+
+TEST(Subdivision, BilinearRefinementOfNonOrientableCagesIsExact) {
+  for (const testing::KnownSurface& surface : {testing::mobius_band(3, 8), testing::klein_bottle(4, 6)}) {
+    SubdivisionCage cage = cage_of(surface.mesh, SubdivisionScheme::bilinear);
+    for (int level = 1; level <= 2; ++level) {
+      const UniformRefinement next = refine_uniform(cage, 1);
+      const std::vector<Vec3> expected = bilinear_points(cage.mesh);
+      ASSERT_EQ(next.cage.mesh.vertex_count(), expected.size()) << surface.name << " level " << level;
+      EXPECT_LE(hausdorff_of_points(testing::points_of(next.cage.mesh), expected), 1e-15) << surface.name;
+      cage = next.cage;
+    }
+    const UniformRefinement two = refine_uniform(cage_of(surface.mesh, SubdivisionScheme::bilinear), 2);
+    EXPECT_EQ(two.topology.faces, 16 * static_cast<Count>(surface.mesh.face_count())) << surface.name;
+    EXPECT_EQ(two.topology.euler, surface.euler) << surface.name;
+    EXPECT_EQ(two.topology.boundary_loops, surface.boundary_loops) << surface.name;
+    EXPECT_FALSE(two.topology.orientable) << surface.name;
+    EXPECT_LE(hausdorff_of_points(testing::points_of(two.cage.mesh), testing::points_of(cage.mesh)), 1e-15);
+  }
+}
+
+// Catmull-Clark on a non-orientable cage is, away from its seam, Catmull-Clark on the orientable
+// cage cut open along the seam (a strip for the Moebius band, a cylinder for the Klein bottle):
+// each new point depends on the cage within two columns of it at level 2. On the seam,
+// OpenSubdiv's non-manifold edges are infinitely sharp: their edge points are their midpoints.
+TEST(Subdivision, CatmullClarkOnNonOrientableCagesAwayFromTheSeamIsTheCutOpenCages) {
+  constexpr int cols = 16;
+  struct Case {
+    testing::KnownSurface surface;
+    FaceVertexMesh cut_open;
+    // Whether a point is at least 5 columns from the seam (column 0 = column cols).
+    std::function<bool(const Vec3&)> far_from_seam;
+  };
+  const auto moebius = [](int i, int j) { return testing::mobius_point(3, cols, i, j); };
+  const auto klein = [](int i, int j) { return Vec3(j, i, 0.25 * i * j); };
+  const auto angle_column = [](const Vec3& p) {
+    const double phi = std::atan2(p.y(), p.x());
+    return (phi < 0 ? phi + 2 * std::numbers::pi : phi) * cols / (2 * std::numbers::pi);
+  };
+  const std::vector<Case> cases = {
+      {testing::mobius_band(3, cols),
+       testing::glued_grid(3, cols, testing::Gluing::none, testing::Gluing::none, moebius),
+       [&](const Vec3& p) { return angle_column(p) >= 5 && angle_column(p) <= cols - 5; }},
+      {testing::klein_bottle(4, cols),
+       testing::glued_grid(4, cols, testing::Gluing::none, testing::Gluing::straight, klein),
+       [](const Vec3& p) { return p.x() >= 5 && p.x() <= cols - 5; }},
+  };
+  for (const Case& c : cases) {
+    ASSERT_TRUE(analyze(c.cut_open).orientable) << c.surface.name;
+    const UniformRefinement seamed = refine_uniform(cage_of(c.surface.mesh), 2);
+    const UniformRefinement cut = refine_uniform(cage_of(c.cut_open), 2);
+    EXPECT_EQ(seamed.topology.faces, 16 * static_cast<Count>(c.surface.mesh.face_count()));
+    EXPECT_EQ(seamed.topology.euler, c.surface.euler);
+    EXPECT_FALSE(seamed.topology.orientable);
+    std::vector<Vec3> far;
+    for (const Vec3& p : testing::points_of(cut.cage.mesh)) {
+      if (c.far_from_seam(p)) far.push_back(p);
+    }
+    // About 6 of 16 columns of the level-2 points.
+    ASSERT_GE(far.size(), cut.cage.mesh.vertex_count() / 4) << c.surface.name;
+    const std::vector<Vec3> all = testing::points_of(seamed.cage.mesh);
+    for (const Vec3& p : far)
+      EXPECT_LE(nearest_distance(p, all), 1e-12) << c.surface.name << ": (" << p.transpose() << ")";
+  }
+  // The seam: every edge both faces walk the same way has its midpoint as its level-1 edge point.
+  const FaceVertexMesh band = testing::mobius_band(3, cols).mesh;
+  const std::vector<Vec3> level1 = testing::points_of(refine_uniform(cage_of(band), 1).cage.mesh);
+  int seam_edges = 0;
+  for (std::size_t f = 0; f < band.face_count(); ++f) {
+    for (std::size_t g = f + 1; g < band.face_count(); ++g) {
+      const auto a = band.face(f), b = band.face(g);
+      for (std::size_t k = 0; k < 4; ++k) {
+        for (std::size_t l = 0; l < 4; ++l) {
+          if (a[k] == b[l] && a[(k + 1) % 4] == b[(l + 1) % 4]) {
+            ++seam_edges;
+            const Vec3 midpoint = (band.position(a[k]) + band.position(a[(k + 1) % 4])) / 2;
+            EXPECT_LE(nearest_distance(midpoint, level1), 1e-15);
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(seam_edges, 3);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -524,7 +669,9 @@ TEST(Subdivision, BadInputIsRefusedWithTheElement) {
   FaceList faces = testing::faces_of(cube());
   std::reverse(faces[2].begin(), faces[2].end());
   const FaceVertexMesh flipped = make_mesh(testing::points_of(cube()), faces);
-  EXPECT_NE(error_message<TopologyError>([&] { refine_uniform(cage_of(flipped), 1); }).find("same direction"),
+  EXPECT_NE(error_message<TopologyError>([&] {
+              refine_uniform(cage_of(flipped), 1);
+            }).find("in the same direction (orient_cage() the cage first)"),
             std::string::npos);
   SubdivisionCage cage = cage_of(cube());
   cage.creases.push_back({0, 6, 1.0});

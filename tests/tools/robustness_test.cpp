@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -28,7 +29,25 @@ struct BadInput {
   std::string bytes;
   /// The arguments, run in the test's folder (so messages show relative names).
   std::string arguments;
+  /// The file the answer names first; empty: the command's input (the word after the command).
+  std::string names = {};
 };
+
+// The file an answer must name: the row's own, or the first argument after the command.
+std::string named_file(const BadInput& bad) {
+  if (!bad.names.empty()) return bad.names;
+  std::istringstream words(bad.arguments);
+  std::string command, input;
+  words >> command >> input;
+  return input;
+}
+
+std::vector<std::string> sorted_entries(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
 
 using testing::slurp;
 
@@ -80,12 +99,13 @@ std::vector<BadInput> bad_inputs() {
       {"BPT", "patch count 2, one patch given", "count.bpt", "2\n3 3\n" + patch_points(16), "info count.bpt"},
       {"BPT", "degree 100 (limit 64)", "degree.bpt", "1\n100 3\n" + patch_points(4), "info degree.bpt"},
       {"BPT", "negative degree", "negative.bpt", "1\n-1 3\n", "info negative.bpt"},
-      {"BPT", "10^12 patches announced (nothing allocated first)", "huge.bpt", "1000000000000\n3 3\n" + patch_points(16),
-       "info huge.bpt"},
+      {"BPT", "10^12 patches announced (nothing allocated first)", "huge.bpt",
+       "1000000000000\n3 3\n" + patch_points(16), "info huge.bpt"},
       {"BPT", "NaN coordinate", "nan.bpt", patch_header + "nan 0 0\n" + patch_points(15), "info nan.bpt"},
       {"BPT", "infinite coordinate", "inf.bpt", patch_header + "inf 0 0\n" + patch_points(15), "info inf.bpt"},
       {"BPT", "a word for a number", "word.bpt", patch_header + "one 0 0\n" + patch_points(15), "info word.bpt"},
-      {"BPT", "binary garbage", "garbage.bpt", std::string("\x7f\x45\x4c\x46\x02\x01\x00\xff\xfe", 9), "info garbage.bpt"},
+      {"BPT", "binary garbage", "garbage.bpt", std::string("\x7f\x45\x4c\x46\x02\x01\x00\xff\xfe", 9),
+       "info garbage.bpt"},
       {"BPT", "all 16 control points equal (no surface)", "point.bpt", patch_header + repeat("1 1 1\n", 16),
        "tessellate point.bpt -o out.glb --relative-tolerance 0.001"},
       {"OBJ", "empty file", "empty.obj", "", "subdivide empty.obj -o out.obj"},
@@ -106,11 +126,13 @@ std::vector<BadInput> bad_inputs() {
        "subdivide repeat.off -o out.obj"},
       {"PLY", "binary, data cut short", "short.ply", ply_header_binary + std::string(10, '\0'), "info short.ply"},
       {"PLY", "binary, face index out of range", "range.ply",
-       ply_header_binary + std::string(36, '\0') + std::string("\x03\x00\x00\x00\x00\x01\x00\x00\x00\x07\x00\x00\x00", 13),
+       ply_header_binary + std::string(36, '\0') +
+           std::string("\x03\x00\x00\x00\x00\x01\x00\x00\x00\x07\x00\x00\x00", 13),
        "info range.ply"},
       {"PLY", "unknown format", "format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n", "info format.ply"},
       {"PLY", "no end_header", "header.ply", "ply\nformat ascii 1.0\nelement vertex 1\n", "info header.ply"},
-      {"glTF", "not glTF at all", "garbage.glb", std::string("glTF\x02\x00\x00\x00\xff\xff", 10), "convert garbage.glb out.obj"},
+      {"glTF", "not glTF at all", "garbage.glb", std::string("glTF\x02\x00\x00\x00\xff\xff", 10),
+       "convert garbage.glb out.obj"},
       {"glTF", "JSON that is not glTF", "empty.gltf", "{}", "convert empty.gltf out.obj"},
       {"glTF", "buffer URI going up out of the file's folder", "up.gltf", gltf_buffer_uri("../secret/data.bin"),
        "convert up.gltf out.obj"},
@@ -125,8 +147,10 @@ std::vector<BadInput> bad_inputs() {
       // --- geometry and options
       {"mesh", "non-manifold edge (three faces) as a subdivision cage", "book.obj",
        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n", "subdivide book.obj -o out.obj"},
-      {"mesh", "inconsistent orientation as a subdivision cage", "flipped.obj",
-       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 3 1 4\n", "subdivide flipped.obj -o out.obj"},
+      {"mesh", "the limit surface of a Moebius band (not orientable)", "band.obj",
+       "v 0.5 0 0\nv 0 0.646 -0.354\nv 0 1.354 0.354\nv 1.5 0 0\nv -1 0 -0.5\nv -1 0 0.5\nv 0 -1.354 -0.354\n"
+       "v 0 -0.646 0.354\nf 1 2 3 4\nf 2 5 6 3\nf 5 7 8 6\nf 7 4 1 8\n",
+       "subdivide band.obj -o out.glb --limit"},
       {"mesh", "quads for Loop subdivision", "cube.obj", cube_obj, "subdivide cube.obj -o out.obj --scheme loop"},
       {"mesh", "11 subdivision levels", "cube.obj", cube_obj, "subdivide cube.obj -o out.obj --levels 11"},
       {"tessellate", "tolerance 0", "patch.bpt", bpt, "tessellate patch.bpt -o out.glb --tolerance 0"},
@@ -141,8 +165,10 @@ std::vector<BadInput> bad_inputs() {
        "tessellate patch.bpt -o out.glb --camera eye=0,0,0 target=0,0,0 fov=40 width=10 height=10"},
       // --- output
       {"output", "unknown output extension", "patch.bpt", bpt, "tessellate patch.bpt -o out.stl --segments 2"},
-      {"output", "output folder does not exist", "patch.bpt", bpt, "tessellate patch.bpt -o no/such/out.glb --segments 2"},
-      {"output", "output is a directory", "patch.bpt", bpt, "tessellate patch.bpt -o folder.glb --segments 2"},
+      {"output", "output folder does not exist", "patch.bpt", bpt,
+       "tessellate patch.bpt -o no/such/out.glb --segments 2", "no/such/out.glb"},
+      {"output", "output is a directory", "patch.bpt", bpt, "tessellate patch.bpt -o folder.glb --segments 2",
+       "folder.glb"},
   };
 }
 
@@ -166,8 +192,10 @@ TEST(Robustness, EveryBadInputGetsOneLineExitOneAndNoFile) {
   table << "# Robustness: every bad input tried, and what patchwork answers\n\n"
         << "Written by `tests/tools/robustness_test.cpp` (`PATCHWORK_UPDATE_DOCS=1` rewrites it; the test fails\n"
         << "when this file differs from what the program answers). Each row runs the `patchwork` command\n"
-        << "line in a fresh folder. Every answer is exit code 1 with this one line on stderr, and no\n"
-        << "output file: `out.*` does not exist afterwards, and a `keep.glb` written before is unchanged.\n"
+        << "line in a fresh folder. Every answer is exit code 1 with this one line on stderr, naming the\n"
+        << "file first (the input, or the output the write failed for), and no file is left: `out.*` does\n"
+        << "not exist afterwards, no temporary of the atomic writer either (the folder holds what it held\n"
+        << "before), and a `keep.glb` written before is unchanged.\n"
         << "The fuzzing of the same readers is in [fuzzing](#fuzzing) below.\n\n"
         << "| input | what is wrong | command | answer |\n|---|---|---|---|\n";
   for (const BadInput& bad : bad_inputs()) {
@@ -176,6 +204,9 @@ TEST(Robustness, EveryBadInputGetsOneLineExitOneAndNoFile) {
     fs::create_directory(folder.path() / "folder.bpt");
     fs::create_directory(folder.path() / "folder.glb");
     std::ofstream(folder.path() / "keep.glb", std::ios::binary) << "previous contents";
+    std::ofstream(folder.path() / "stdout.txt");
+    std::ofstream(folder.path() / "stderr.txt");
+    const std::vector<std::string> before = sorted_entries(folder.path());
     const std::string command = "cd '" + folder.path().string() + "' && '" PATCHWORK_CLI "' " + bad.arguments +
                                 " > stdout.txt 2> stderr.txt";
     const int status = std::system(command.c_str());
@@ -183,13 +214,13 @@ TEST(Robustness, EveryBadInputGetsOneLineExitOneAndNoFile) {
     const std::string err = slurp(folder.path() / "stderr.txt");
     EXPECT_EQ(exit_code, 1) << bad.arguments << "\n" << err;
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << bad.arguments << "\n" << err;
-    EXPECT_EQ(err.rfind("patchwork: ", 0), 0u) << err;
+    // The line names the file first, as "patchwork: FILE: ..." or "patchwork: FILE:LINE:COLUMN: ...".
+    EXPECT_EQ(err.rfind("patchwork: " + named_file(bad) + ":", 0), 0u) << bad.arguments << "\n" << err;
     EXPECT_FALSE(fs::exists(folder.path() / "out.glb") || fs::exists(folder.path() / "out.obj")) << bad.arguments;
     EXPECT_EQ(slurp(folder.path() / "keep.glb"), "previous contents");
-    // No temporary file of an atomic write is left behind.
-    for (const auto& entry : fs::directory_iterator(folder.path())) {
-      EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << bad.arguments;
-    }
+    // Nothing is left behind: not the output, not the atomic writer's temporary (a hidden
+    // ".NAME.XXXXXX" beside the output, io/atomic_file.cpp), nothing else.
+    EXPECT_EQ(sorted_entries(folder.path()), before) << bad.arguments;
     table << "| " << bad.group << " | " << markdown_cell(bad.what) << " | `patchwork " << bad.arguments << "` | "
           << markdown_cell(err) << (exit_code == 1 ? "" : " (exit " + std::to_string(exit_code) + ")") << " |\n";
   }
