@@ -339,34 +339,58 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
     if (!matched[k]) open_.push_back(edges[k]);
   }
 
-  // Boundary loops: chain open edges head to tail in walking order.
-  const auto walk_start = [&](EdgeRef e) {
-    const auto row = row_from_edge(patches_[e.patch], e.edge, 0);
-    return walks_forward(e.edge) ? row.front() : row.back();
+  // Boundary loops: chain open edges head to tail in walking order, through corners joined as the
+  // tessellator welds them (by shared and collapsed edges and T-junctions, not by position: a
+  // patch whose edge is a closed curve, or patches touching at a point, keep their corners apart).
+  // Edge k of a patch runs, along boundary_curve, from corner edge_start[k] to edge_end[k]
+  // (c0 = (0,0), c1 = (1,0), c2 = (1,1), c3 = (0,1)).
+  const auto corner = [](EdgeRef e, bool at_start) {
+    constexpr int edge_start[4] = {0, 1, 3, 0};
+    constexpr int edge_end[4] = {1, 2, 2, 3};
+    const int k = static_cast<int>(e.edge);
+    return static_cast<std::uint32_t>(4 * e.patch + (at_start ? edge_start[k] : edge_end[k]));
   };
-  const auto walk_end = [&](EdgeRef e) {
-    const auto row = row_from_edge(patches_[e.patch], e.edge, 0);
-    return walks_forward(e.edge) ? row.back() : row.front();
-  };
-  PointGrid starts(std::max(2.0 * tolerance_, 1e-300));
-  for (std::size_t k = 0; k < open_.size(); ++k) starts.insert(walk_start(open_[k]), k);
+  UnionFind welded(static_cast<std::uint32_t>(4 * patches_.size()));
+  for (const SharedEdge& s : shared_) {
+    welded.unite(corner(s.first, true), corner(s.second, !s.reversed));
+    welded.unite(corner(s.first, false), corner(s.second, s.reversed));
+  }
+  for (const EdgeRef& e : collapsed_) welded.unite(corner(e, true), corner(e, false));
+  for (const TJunction& t : t_junctions_) {
+    for (std::size_t b = 0; b < t.parts.size(); ++b) {
+      const bool reversed = t.reversed[b];
+      if (b == 0) welded.unite(corner(t.edge, true), corner(t.parts[b], !reversed));
+      if (b + 1 == t.parts.size()) welded.unite(corner(t.edge, false), corner(t.parts[b], reversed));
+      if (b + 1 < t.parts.size()) welded.unite(corner(t.parts[b], reversed), corner(t.parts[b + 1], !t.reversed[b + 1]));
+    }
+  }
+  const auto walk_start = [&](EdgeRef e) { return welded.find(corner(e, walks_forward(e.edge))); };
+  const auto walk_end = [&](EdgeRef e) { return welded.find(corner(e, !walks_forward(e.edge))); };
+  std::unordered_map<std::uint32_t, std::vector<std::size_t>> starts;
+  for (std::size_t k = 0; k < open_.size(); ++k) starts[walk_start(open_[k])].push_back(k);
   std::vector<bool> used(open_.size(), false);
   for (std::size_t first = 0; first < open_.size(); ++first) {
     if (used[first]) continue;
     BoundaryLoop loop{{open_[first]}, false};
     used[first] = true;
-    const Vec3 origin = walk_start(open_[first]);
+    const std::uint32_t origin = walk_start(open_[first]);
     std::size_t current = first;
     while (true) {
-      const Vec3 end = walk_end(open_[current]);
-      if ((end - origin).norm() <= tolerance_) {
+      const std::uint32_t end = walk_end(open_[current]);
+      if (end == origin) {
         loop.closed = true;
         break;
       }
       std::optional<std::size_t> next;
-      starts.near(end, [&](std::size_t k) {
-        if (!next && !used[k] && (walk_start(open_[k]) - end).norm() <= tolerance_) next = k;
-      });
+      const auto here = starts.find(end);
+      if (here != starts.end()) {
+        for (std::size_t k : here->second) {
+          if (!used[k]) {
+            next = k;
+            break;
+          }
+        }
+      }
       if (!next) break;
       used[*next] = true;
       loop.edges.push_back(open_[*next]);

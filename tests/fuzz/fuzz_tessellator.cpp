@@ -39,18 +39,23 @@ Count patch_components(const PatchSet& set, const std::vector<bool>& meshed) {
   for (const SharedEdge& shared : set.shared_edges()) {
     if (meshed[shared.first.patch] && meshed[shared.second.patch]) components.unite(shared.first.patch, shared.second.patch);
   }
+  for (const TJunction& t : set.t_junctions()) {
+    for (const EdgeRef& part : t.parts) {
+      if (meshed[t.edge.patch] && meshed[part.patch]) components.unite(t.edge.patch, part.patch);
+    }
+  }
   Count roots = 0;
   for (std::uint32_t p = 0; p < count; ++p) roots += meshed[p] && components.find(p) == p;
   return roots;
 }
 
 // Whether the welded mesh's boundary loops must be the patch set's. The tessellator joins
-// corners only through shared and collapsed edges; PatchSet chains open edges into loops by
-// their end points. The two agree unless
+// corners only through shared and collapsed edges and T-junctions, and PatchSet chains open
+// edges into loops through the same joins (two corners at one point that nothing joins, as at a
+// touching point or a patch whose edge is a closed curve, stay apart in both). The two agree
+// unless
 //   - a loop is not closed (an open end, a non-manifold corner or an orientation flip);
 //   - a patch has no triangle (two collapsed edges that meet, at one segment);
-//   - two corners the tessellator does not weld are at one point (a touching point, or a patch
-//     whose edge is a closed curve): PatchSet may chain through it, the mesh does not;
 //   - two edges (not collapsed) join the same two welded corners, or one joins a welded corner
 //     to itself: at one segment they are one mesh edge, which then is no boundary.
 bool boundary_loops_comparable(const PatchSet& set, const std::vector<bool>& meshed) {
@@ -58,12 +63,6 @@ bool boundary_loops_comparable(const PatchSet& set, const std::vector<bool>& mes
                    [](const BoundaryLoop& loop) { return loop.closed; }) ||
       std::find(meshed.begin(), meshed.end(), false) != meshed.end())
     return false;
-  const auto corner = [&](std::uint32_t p, int c) {
-    const BezierPatch3& patch = set.patches()[p];
-    const int n = patch.degree_u(), m = patch.degree_v();
-    const int i = c == 1 || c == 2 ? n : 0, j = c >= 2 ? m : 0;  // (0,0), (n,0), (n,m), (0,m)
-    return patch.control_points()[i + (n + 1) * j];
-  };
   // Edge k runs from corner start[k] to end[k] in boundary_curve direction.
   constexpr int start[4] = {0, 1, 3, 0};
   constexpr int end[4] = {1, 2, 2, 3};
@@ -77,12 +76,21 @@ bool boundary_loops_comparable(const PatchSet& set, const std::vector<bool>& mes
   for (const EdgeRef& e : set.collapsed_edges()) {
     welded.unite(slot(e.patch, start[static_cast<int>(e.edge)]), slot(e.patch, end[static_cast<int>(e.edge)]));
   }
-  const std::uint32_t slots = 4 * static_cast<std::uint32_t>(set.patches().size());
-  for (std::uint32_t x = 0; x < slots; ++x) {
-    for (std::uint32_t y = 0; y < slots; ++y) {
-      if (welded.find(x) != welded.find(y) && (corner(x / 4, x % 4) - corner(y / 4, y % 4)).norm() <= set.tolerance())
-        return false;
-    }
+  // A T-junction's parts, end to end along the long edge (part b in the long edge's direction
+  // runs from its end corner to its start corner when reversed).
+  for (const TJunction& t : set.t_junctions()) {
+    const auto from = [&](std::size_t b) {
+      const int k = static_cast<int>(t.parts[b].edge);
+      return slot(t.parts[b].patch, t.reversed[b] ? end[k] : start[k]);
+    };
+    const auto to = [&](std::size_t b) {
+      const int k = static_cast<int>(t.parts[b].edge);
+      return slot(t.parts[b].patch, t.reversed[b] ? start[k] : end[k]);
+    };
+    const int k = static_cast<int>(t.edge.edge);
+    welded.unite(slot(t.edge.patch, start[k]), from(0));
+    welded.unite(slot(t.edge.patch, end[k]), to(t.parts.size() - 1));
+    for (std::size_t b = 0; b + 1 < t.parts.size(); ++b) welded.unite(to(b), from(b + 1));
   }
   // Each edge once (a shared edge by its first side), as the pair of its welded end corners.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> ends;

@@ -364,15 +364,12 @@ TEST(TessellatorThreads, EveryModeGivesTheSameOutputOnAnyThreadCount) {
   }
 }
 
-// DISABLED: a library bug, reported and not fixed here (surfaces/patch_set.cpp is being changed).
 // A patch whose v0 edge is a closed curve (its corners (0,0) and (1,0) are one point) touches
-// itself there. PatchSet chains open edges into loops by their end points and lists no touching
-// point, so it finds two loops, [v0] and [u1 v1 u0]; the tessellator welds corners only through
-// shared and collapsed edges, so the welded mesh (a manifold disc, 117 triangles at 1e-2) has one
-// boundary loop through two vertices at that point. tessellator.h promises the patch set's
-// topology where patches touch at a point; for two patches touching at a corner it holds (two
-// loops, one touching point, two loops in the mesh), for a patch touching itself it does not.
-TEST(TessellatorTopology, DISABLED_APatchWhoseEdgeIsAClosedCurveHasThePatchSetsBoundaryLoops) {
+// itself there. The tessellator welds corners only through shared and collapsed edges, so the
+// welded mesh (a manifold disc) has one boundary loop through two vertices at that point, and
+// PatchSet chains its loops through the same joins: one loop [v0 u1 v1 u0] (it found two, [v0]
+// and [u1 v1 u0], when it chained by end points).
+TEST(TessellatorTopology, APatchWhoseEdgeIsAClosedCurveHasThePatchSetsBoundaryLoops) {
   // Degree (3, 1): row v = 0 a closed cubic loop through the origin (P00 = P30), row v = 1 open.
   const BezierPatch3 patch(3, 1, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0), Vec3(-1, -1, 1),
                                   Vec3(1, -1, 1), Vec3(1, 1, 1), Vec3(-1, 1, 1)});
@@ -381,7 +378,10 @@ TEST(TessellatorTopology, DISABLED_APatchWhoseEdgeIsAClosedCurveHasThePatchSetsB
   options.relative_tolerance = 1e-2;
   const TopologyReport report = analyze(welded_faces(tessellate(set, options).mesh));
   ASSERT_TRUE(report.manifold);
-  EXPECT_EQ(report.boundary_loops, static_cast<Count>(set.boundary_loops().size()));  // 1 against 2
+  ASSERT_EQ(set.boundary_loops().size(), 1u);
+  EXPECT_TRUE(set.boundary_loops()[0].closed);
+  EXPECT_EQ(set.boundary_loops()[0].edges.size(), 4u);
+  EXPECT_EQ(report.boundary_loops, static_cast<Count>(set.boundary_loops().size()));
 }
 
 }  // namespace
