@@ -68,6 +68,11 @@ int main(int argc, char** argv) {
   tolerance->excludes(relative, segments, camera);
   relative->excludes(segments, camera);
   segments->excludes(camera);
+  tessellate
+      ->add_option("--cull-back-faces", tess.cull_back_faces,
+                   "With --camera: auto (only patches of closed, outward shells seen from outside, where no "
+                   "hole can open), always or never")
+      ->capture_default_str();
   tessellate->add_option("--threads", tess.threads, "Threads (0: all cores)")->capture_default_str();
   tessellate->add_option("--uv", tess.uv, "UVs: none, patch (surface parameters) or atlas")->capture_default_str();
   tessellate->add_flag("--tangents", tess.tangents, "Write glTF TANGENT");

@@ -113,6 +113,13 @@ std::vector<double> screen_coverages(const PatchSet& set, const std::vector<Tess
   return coverage;
 }
 
+BackFaceCulling parse_back_face_culling(const std::string& text) {
+  if (text == "auto") return BackFaceCulling::automatic;
+  if (text == "always") return BackFaceCulling::always;
+  if (text == "never") return BackFaceCulling::never;
+  throw InvalidInput(detail::message("--cull-back-faces: '", text, "' is not auto, always or never"));
+}
+
 UvMode parse_uv(const std::string& text) {
   if (text == "none") return UvMode::none;
   if (text == "patch") return UvMode::patch;
@@ -137,6 +144,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   options.segments = arguments.segments;
   if (!arguments.camera.empty()) options.camera = parse_camera(arguments.camera);
   options.pixel_tolerance = arguments.pixel_tolerance;
+  options.back_face_culling = parse_back_face_culling(arguments.cull_back_faces);
   options.threads = arguments.threads;
   options.uv = parse_uv(arguments.uv);
   options.tangents = arguments.tangents;
@@ -187,6 +195,13 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   } else {
     write_mesh(arguments.output, welded_faces(result.mesh));
   }
+  // Edges joined across gaps (PatchSet's tolerance) can push the bound past the tolerance: said
+  // on stderr, since the tolerance asked for is not met.
+  if (!arguments.segments && result.error_bound > result.tolerance) {
+    progress << "patchwork: " << arguments.input << ": the error bound " << result.error_bound
+             << " is above the tolerance " << result.tolerance << ": patch edges are joined across gaps of up to "
+             << result.weld_gap << "\n";
+  }
   // The bound for the file: the mesh's plus what writing moved a vertex (io/gltf.h).
   const double file_error_bound = result.error_bound + rounding[0];
   if (arguments.json) {
@@ -198,6 +213,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
                                      {"tolerance", arguments.segments ? nlohmann::json(nullptr) : nlohmann::json(result.tolerance)},
                                      {"error_bound", result.error_bound},
                                      {"file_error_bound", file_error_bound},
+                                     {"weld_gap", result.weld_gap},
                                      {"measured_error", result.measured_error},
                                      {"culled_patches", result.culled_patches}};
     out << document.dump(2) << "\n";
@@ -215,7 +231,9 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     out << "  tolerance:      " << tolerance_summary(result.tolerance, options.relative_tolerance, default_tolerance)
         << "\n";
   }
-  out << "  error bound:    " << result.error_bound << " (guaranteed)\n";
+  out << "  error bound:    " << result.error_bound << " (guaranteed";
+  if (result.weld_gap > 0.0) out << "; includes a weld gap of " << result.weld_gap;
+  out << ")\n";
   out << "  file bound:     " << file_error_bound << " (guaranteed for the file: + " << rounding[0]
       << " float rounding of its positions)\n";
   out << "  measured error: " << result.measured_error << "\n";

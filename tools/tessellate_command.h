@@ -37,6 +37,9 @@ struct TessellateArguments {
   /// key=value tokens: eye=x,y,z target=x,y,z fov=deg width=px height=px [up=x,y,z].
   std::vector<std::string> camera;
   double pixel_tolerance = 0.5;
+  /// With --camera: auto (back faces culled only on shells that bound a solid, seen from
+  /// outside), always or never (BackFaceCulling).
+  std::string cull_back_faces = "auto";
   int threads = 0;
   std::string uv = "patch";
   bool tangents = false;

@@ -81,7 +81,7 @@ TEST(Cli, TessellatePrintsExactlyThePromisedJsonAndWritesValidGltf) {
   std::set<std::string> keys;
   for (const auto& [key, value] : summary.items()) keys.insert(key);
   EXPECT_EQ(keys, (std::set<std::string>{"patches", "triangles", "vertices", "seconds", "tolerance", "error_bound",
-                                         "file_error_bound", "measured_error", "culled_patches"}));
+                                         "file_error_bound", "weld_gap", "measured_error", "culled_patches"}));
   EXPECT_EQ(summary["patches"], 32);
   EXPECT_LE(summary["measured_error"].get<double>(), summary["error_bound"].get<double>());
   EXPECT_LE(summary["error_bound"].get<double>(), summary["tolerance"].get<double>());
@@ -147,6 +147,27 @@ TEST(Cli, TessellateReportsTheBoundOfTheFileAsWritten) {
   if (validator_available()) {
     EXPECT_TRUE(validates(glb));
   }
+}
+
+// --cull-back-faces: the teapot is open, so by default (auto) only the frustum culls, as with
+// never; always culls the patches facing away too. A bad value is refused before anything is
+// read or written.
+TEST(Cli, BackFaceCullingFollowsTheOption) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const std::string glb = quote((folder.path() / "view.glb").string());
+  const std::string view = " --camera eye=0.3,-1.2,9 target=0,0,1.5 fov=40 width=400 height=300 --json";
+  const auto culled = [&](const std::string& mode) {
+    const CliRun run = patchwork(folder, "tessellate " + teapot + " -o " + glb + view + mode);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return nlohmann::json::parse(run.out)["culled_patches"].get<int>();
+  };
+  const int automatic = culled("");
+  EXPECT_EQ(automatic, culled(" --cull-back-faces auto"));
+  EXPECT_EQ(automatic, culled(" --cull-back-faces never"));
+  EXPECT_GT(culled(" --cull-back-faces always"), automatic);
+  const CliRun bad = patchwork(folder, "tessellate " + teapot + " -o " + glb + view + " --cull-back-faces sometimes");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--cull-back-faces: 'sometimes' is not auto, always or never"), std::string::npos) << bad.err;
 }
 
 // The diagonal of the teapot's box from dense samples of every patch (a lower bound of the tight
