@@ -85,7 +85,7 @@ void stitch_side(const std::vector<std::uint32_t>& outer, const std::vector<doub
   std::size_t i = 0;
   std::size_t j = 0;
   while (i < a || j < b) {
-    const double next_outer = along[i + 1];
+    const double next_outer = i < a ? along[i + 1] : 2.0;  // past the end: the inner row goes on
     const double next_inner = ratio(offset + static_cast<int>(j + 1), inner_rate);
     if (j == b || (i < a && next_outer <= next_inner)) {
       triangles.push_back({outer[i], outer[i + 1], inner[j]});
