@@ -467,11 +467,15 @@ std::vector<SecondDerivativeBounds> piece_second_derivative_bounds(const BezierP
   return bounds;
 }
 
-SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int pieces) {
-  const std::vector<SecondDerivativeBounds> all = piece_second_derivative_bounds(patch, pieces);
-  SecondDerivativeBounds M = all.front();
-  for (const SecondDerivativeBounds& piece : all) M = merged_bounds(M, piece);
+SecondDerivativeBounds merged_bounds(const std::vector<SecondDerivativeBounds>& bounds) {
+  PATCHWORK_ASSERT(!bounds.empty(), "bounds of at least one domain");
+  SecondDerivativeBounds M = bounds.front();
+  for (const SecondDerivativeBounds& piece : bounds) M = merged_bounds(M, piece);
   return M;
+}
+
+SecondDerivativeBounds second_derivative_bounds(const BezierPatch3& patch, int pieces) {
+  return merged_bounds(piece_second_derivative_bounds(patch, pieces));
 }
 
 double flatness_bound(const SecondDerivativeBounds& M, double du, double dv, double good_enough) {

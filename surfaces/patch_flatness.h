@@ -76,6 +76,10 @@ struct SecondDerivativeBounds {
 /// have them).
 SecondDerivativeBounds merged_bounds(const SecondDerivativeBounds& a, const SecondDerivativeBounds& b);
 
+/// Bounds over the union of the domains of all of `bounds` (merged_bounds of them all).
+/// \pre bounds is not empty.
+SecondDerivativeBounds merged_bounds(const std::vector<SecondDerivativeBounds>& bounds);
+
 /// The bounds in the parameters of a sub-domain `size` times as wide in u and v (chain rule:
 /// second derivatives times size^2, their Gram entries times size^4, third derivatives times
 /// size^3, fourth times size^4). \pre size > 0.

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "surfaces/bernstein_product.h"
 #include "curves/bernstein.h"
 
 namespace patchwork {
@@ -33,42 +34,7 @@ CameraFrame frame(const Camera& camera) {
   return f;
 }
 
-// A scalar tensor-product Bernstein polynomial of degrees (n, m), coefficient (i, j) at i + (n+1) j.
-struct ScalarPatch {
-  int n;
-  int m;
-  std::vector<double> c;
-  double at(int i, int j) const { return c[static_cast<std::size_t>(i + (n + 1) * j)]; }
-};
-
-// The product in the Bernstein basis: with a'_ij = C(n1,i) C(m1,j) a_ij (likewise b'), the
-// product's scaled coefficients are the convolution of a' and b', divided by C(n1+n2,k) C(m1+m2,l).
-ScalarPatch multiply(const ScalarPatch& a, const ScalarPatch& b) {
-  ScalarPatch product{a.n + b.n, a.m + b.m, {}};
-  product.c.assign(static_cast<std::size_t>((product.n + 1) * (product.m + 1)), 0.0);
-  for (int j1 = 0; j1 <= a.m; ++j1) {
-    for (int i1 = 0; i1 <= a.n; ++i1) {
-      const double wa = binomial(a.n, i1) * binomial(a.m, j1) * a.at(i1, j1);
-      for (int j2 = 0; j2 <= b.m; ++j2) {
-        for (int i2 = 0; i2 <= b.n; ++i2) {
-          product.c[static_cast<std::size_t>(i1 + i2 + (product.n + 1) * (j1 + j2))] +=
-              wa * binomial(b.n, i2) * binomial(b.m, j2) * b.at(i2, j2);
-        }
-      }
-    }
-  }
-  for (int l = 0; l <= product.m; ++l) {
-    for (int k = 0; k <= product.n; ++k) {
-      product.c[static_cast<std::size_t>(k + (product.n + 1) * l)] /= binomial(product.n, k) * binomial(product.m, l);
-    }
-  }
-  return product;
-}
-
-void add(ScalarPatch& sum, const ScalarPatch& term, double sign) {
-  if (sum.c.empty()) sum = ScalarPatch{term.n, term.m, std::vector<double>(term.c.size(), 0.0)};
-  for (std::size_t k = 0; k < term.c.size(); ++k) sum.c[k] += sign * term.c[k];
-}
+using detail::ScalarPatch;
 
 }  // namespace
 
@@ -141,9 +107,9 @@ std::vector<double> facing_coefficients(const BezierPatch3& patch, const Vec3& e
     // (F_u x F_v)_c = F_u,c1 F_v,c2 - F_u,c2 F_v,c1 with (c, c1, c2) cyclic.
     const int c1 = (c + 1) % 3;
     const int c2 = (c + 2) % 3;
-    ScalarPatch normal_c = multiply(Fu[c1], Fv[c2]);
-    add(normal_c, multiply(Fu[c2], Fv[c1]), -1.0);
-    add(g, multiply(F[c], normal_c), 1.0);
+    ScalarPatch normal_c = detail::multiply(Fu[c1], Fv[c2]);
+    detail::add(normal_c, detail::multiply(Fu[c2], Fv[c1]), -1.0);
+    detail::add(g, detail::multiply(F[c], normal_c), 1.0);
   }
   return g.c;
 }

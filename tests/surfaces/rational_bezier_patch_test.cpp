@@ -1,9 +1,13 @@
 #include "surfaces/rational_bezier_patch.h"
 
 #include <gtest/gtest.h>
+#include <array>
+#include <iostream>
+#include <limits>
 #include <rapidcheck/gtest.h>
 
 #include "core/errors.h"
+#include "surfaces/rational_bounds.h"
 #include "surfaces/surface_normal.h"
 #include "tests/surfaces/patch_fixtures.h"
 
@@ -69,6 +73,125 @@ RC_GTEST_PROP(RationalBezierPatch, EqualWeightsGiveThePolynomialPatch, ()) {
       // Derivatives up to 3 of a degree <= 4 net with coordinates <= 10: size <= 4^3 * 8 * 10.
       RC_ASSERT((got.at(a, b) - expected.at(a, b)).norm() <= 1e-12 * 5120.0);
     }
+  }
+}
+
+// The largest |F_uu|, |F_uv|, |F_vv| sampled on a (k+1) x (k+1) grid of [u0, u1] x [v0, v1].
+std::array<double, 3> sampled_second_derivatives(const RationalBezierPatch& patch, double u0, double u1, double v0,
+                                                 double v1, int k = 24) {
+  std::array<double, 3> largest{0, 0, 0};
+  for (int j = 0; j <= k; ++j) {
+    for (int i = 0; i <= k; ++i) {
+      const PartialDerivatives<3> d =
+          partial_derivatives(patch, u0 + (u1 - u0) * i / k, v0 + (v1 - v0) * j / k, 2);
+      largest[0] = std::max(largest[0], d.at(2, 0).norm());
+      largest[1] = std::max(largest[1], d.at(1, 1).norm());
+      largest[2] = std::max(largest[2], d.at(0, 2).norm());
+    }
+  }
+  return largest;
+}
+
+rc::Gen<RationalBezierPatch> random_rational_patch() {
+  return rc::gen::exec([] {
+    const BezierPatch3 net = *testing::random_patch(1, 4);
+    std::vector<double> weights;
+    for (std::size_t k = 0; k < net.control_points().size(); ++k) weights.push_back(*testing::coordinate(0.2, 5.0));
+    return RationalBezierPatch(net.degree_u(), net.degree_v(), net.control_points(), weights);
+  });
+}
+
+// The quotient-rule bounds (surfaces/rational_bounds.h) hold at every sample of the true second
+// derivatives, on the whole patch and on each of its 3 x 3 pieces.
+RC_GTEST_PROP(RationalBounds, BoundTheSecondDerivatives, ()) {
+  const RationalBezierPatch patch = *random_rational_patch();
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  const std::array<double, 3> sampled = sampled_second_derivatives(patch, 0, 1, 0, 1);
+  const double slack = 1 + 1e-9;
+  RC_ASSERT(sampled[0] <= M.uu * slack + 1e-12);
+  RC_ASSERT(sampled[1] <= M.uv * slack + 1e-12);
+  RC_ASSERT(sampled[2] <= M.vv * slack + 1e-12);
+  RC_ASSERT(!M.directions.has_value());
+  const std::vector<SecondDerivativeBounds> pieces = piece_second_derivative_bounds(patch, 3);
+  for (int b = 0; b < 3; ++b) {
+    for (int a = 0; a < 3; ++a) {
+      const SecondDerivativeBounds& P = pieces[static_cast<std::size_t>(a + 3 * b)];
+      const std::array<double, 3> here = sampled_second_derivatives(patch, a / 3.0, (a + 1) / 3.0, b / 3.0, (b + 1) / 3.0, 8);
+      RC_ASSERT(here[0] <= P.uu * slack + 1e-12);
+      RC_ASSERT(here[1] <= P.uv * slack + 1e-12);
+      RC_ASSERT(here[2] <= P.vv * slack + 1e-12);
+    }
+  }
+}
+
+// With equal weights the patch is polynomial: the bounds are no looser than its norm bounds (the
+// numerators are then w^3 times the nets of F_uu, F_uv, F_vv raised in degree, whose largest
+// coefficient is at most the net's), and still hold (BoundTheSecondDerivatives).
+RC_GTEST_PROP(RationalBounds, EqualWeightsAreNoLooserThanThePolynomialNormBounds, ()) {
+  const BezierPatch3 net = *testing::random_patch(0, 4);
+  const double w = *testing::coordinate(0.5, 3.0);
+  const RationalBezierPatch patch(net.degree_u(), net.degree_v(), net.control_points(),
+                                  std::vector<double>(net.control_points().size(), w));
+  const SecondDerivativeBounds rational = second_derivative_bounds(patch);
+  const SecondDerivativeBounds polynomial = second_derivative_bounds(net);
+  const double scale = 1e-12 * (1 + testing::net_scale(net));
+  RC_ASSERT(rational.uu <= polynomial.uu * (1 + 1e-12) + scale);
+  RC_ASSERT(rational.uv <= polynomial.uv * (1 + 1e-12) + scale);
+  RC_ASSERT(rational.vv <= polynomial.vv * (1 + 1e-12) + scale);
+  // A bilinear net is its own elevation's extreme: there the two agree.
+  if (net.degree_u() <= 1 && net.degree_v() <= 1) {
+    RC_ASSERT(std::abs(rational.uv - polynomial.uv) <= scale * (1 + polynomial.uv));
+  }
+}
+
+// On the sphere's octant (weights 1/sqrt2 and 1/2 inside, a pole): the grid the bounds ask for at
+// a tolerance meets it, measured as |F - L| at ten points of every triangle; finer pieces tighten
+// the bound towards the sampled maximum of the true derivatives.
+TEST(RationalBounds, SphereOctantGridMeetsItsTolerance) {
+  const RationalBezierPatch octant = sphere_octant(Vec3(0.5, -1, 2), 3.0);
+  const std::array<double, 3> sampled = sampled_second_derivatives(octant, 0, 1, 0, 1, 64);
+  double previous = std::numeric_limits<double>::infinity();
+  for (int pieces : {1, 2, 4, 8, 16}) {
+    const SecondDerivativeBounds M = second_derivative_bounds(octant, pieces);
+    EXPECT_GE(M.uu, sampled[0] * (1 - 1e-9));
+    EXPECT_GE(M.uv, sampled[1] * (1 - 1e-9));
+    EXPECT_GE(M.vv, sampled[2] * (1 - 1e-9));
+    EXPECT_LE(M.uu + M.uv + M.vv, previous * (1 + 1e-12));
+    previous = M.uu + M.uv + M.vv;
+    std::cout << pieces << " pieces: M = (" << M.uu << ", " << M.uv << ", " << M.vv << "), sampled (" << sampled[0]
+              << ", " << sampled[1] << ", " << sampled[2] << ")\n";
+  }
+  // Tight on small pieces: 16 x 16 pieces within 15% of the sampled maximum.
+  const SecondDerivativeBounds M16 = second_derivative_bounds(octant, 16);
+  EXPECT_LE(M16.uu, 1.15 * sampled[0]);
+  EXPECT_LE(M16.uv, 1.15 * sampled[1]);
+  EXPECT_LE(M16.vv, 1.15 * sampled[2]);
+  for (const double tolerance : {1e-2, 1e-3, 1e-4}) {
+    const GridSize grid = grid_for_tolerance(second_derivative_bounds(octant, 4), tolerance);
+    const auto nu = grid.segments_u;
+    const auto nv = grid.segments_v;
+    double measured = 0.0;
+    for (std::int64_t j = 0; j < nv; ++j) {
+      for (std::int64_t i = 0; i < nu; ++i) {
+        const Vec2 p00(static_cast<double>(i) / nu, static_cast<double>(j) / nv);
+        const Vec2 p11(static_cast<double>(i + 1) / nu, static_cast<double>(j + 1) / nv);
+        const Vec2 p10(p11.x(), p00.y());
+        const Vec2 p01(p00.x(), p11.y());
+        for (const auto& triangle : {std::array<Vec2, 3>{p00, p10, p11}, std::array<Vec2, 3>{p00, p11, p01}}) {
+          std::array<Vec3, 3> corner;
+          for (int c = 0; c < 3; ++c) corner[c] = octant.evaluate(triangle[c].x(), triangle[c].y());
+          for (const auto& w : {std::array<double, 3>{1 / 3.0, 1 / 3.0, 1 / 3.0}, std::array<double, 3>{0.5, 0.5, 0},
+                                std::array<double, 3>{0, 0.5, 0.5}, std::array<double, 3>{0.5, 0, 0.5}}) {
+            const Vec2 uv = w[0] * triangle[0] + w[1] * triangle[1] + w[2] * triangle[2];
+            const Vec3 linear = w[0] * corner[0] + w[1] * corner[1] + w[2] * corner[2];
+            measured = std::max(measured, (octant.evaluate(uv.x(), uv.y()) - linear).norm());
+          }
+        }
+      }
+    }
+    EXPECT_LE(measured, tolerance) << nu << " x " << nv;
+    EXPECT_GT(measured, 0.3 * tolerance) << "the grid is not wastefully fine";
+    std::cout << "tolerance " << tolerance << ": grid " << nu << " x " << nv << ", measured " << measured << "\n";
   }
 }
 
