@@ -9,12 +9,17 @@
 #include <span>
 
 #include "surfaces/bezier_patch.h"
+#include "surfaces/rational_bezier_patch.h"
 
 namespace patchwork {
 
 /// A box that contains F([0,1]^2) and whose every face is within `tolerance` of the surface's
 /// extreme in that direction. \throws InvalidInput if tolerance is not positive.
 Eigen::AlignedBox3d bounding_box(const BezierPatch3& patch, double tolerance);
+
+/// The same for a rational patch (its points bound it: the weights are positive).
+/// \throws InvalidInput if tolerance is not positive.
+Eigen::AlignedBox3d bounding_box(const RationalBezierPatch& patch, double tolerance);
 
 /// A box that contains the surface of every patch, each face within `tolerance` of the set's
 /// extreme in that direction (patches that cannot reach past the others' corners are skipped).

@@ -68,6 +68,36 @@ PartialDerivatives<3> partial_derivatives(const RationalBezierPatch& patch, doub
   return F;
 }
 
+std::pair<RationalBezierPatch, RationalBezierPatch> split_u(const RationalBezierPatch& patch, double u) {
+  auto [a, b] = split_u(patch.homogeneous(), u);
+  return {RationalBezierPatch(std::move(a)), RationalBezierPatch(std::move(b))};
+}
+
+std::pair<RationalBezierPatch, RationalBezierPatch> split_v(const RationalBezierPatch& patch, double v) {
+  auto [a, b] = split_v(patch.homogeneous(), v);
+  return {RationalBezierPatch(std::move(a)), RationalBezierPatch(std::move(b))};
+}
+
+RationalBezierPatch subpatch(const RationalBezierPatch& patch, double u0, double u1, double v0, double v1) {
+  return RationalBezierPatch(subpatch(patch.homogeneous(), u0, u1, v0, v1));
+}
+
+RationalBezierPatch elevate_degree(const RationalBezierPatch& patch, int times_u, int times_v) {
+  return RationalBezierPatch(elevate_degree(patch.homogeneous(), times_u, times_v));
+}
+
+RationalBezierCurve3 iso_curve_u(const RationalBezierPatch& patch, double u) {
+  return RationalBezierCurve3(iso_curve_u(patch.homogeneous(), u));
+}
+
+RationalBezierCurve3 iso_curve_v(const RationalBezierPatch& patch, double v) {
+  return RationalBezierCurve3(iso_curve_v(patch.homogeneous(), v));
+}
+
+RationalBezierCurve3 boundary_curve(const RationalBezierPatch& patch, PatchEdge edge) {
+  return RationalBezierCurve3(boundary_curve(patch.homogeneous(), edge));
+}
+
 RationalBezierPatch sphere_octant(const Vec3& center, double radius) {
   if (!center.allFinite() || !std::isfinite(radius) || !(radius > 0.0)) {
     throw InvalidInput(detail::message("sphere_octant: radius ", radius, " is not positive, or the centre is not finite"));

@@ -10,6 +10,7 @@
 
 #include <vector>
 
+#include "curves/rational_bezier_curve.h"
 #include "surfaces/bezier_patch.h"
 
 namespace patchwork {
@@ -41,6 +42,26 @@ class RationalBezierPatch {
 
 /// All partial derivatives of F with a + b <= order at (u, v).
 PartialDerivatives<3> partial_derivatives(const RationalBezierPatch& patch, double u, double v, int order);
+
+// The operations of BezierPatch, on the homogeneous net (exact for the rational surface: de
+// Casteljau and degree elevation of H = (w P, w) are those of F, since F = H / w pointwise).
+
+/// The pieces over [0,u] x [0,1] and [u,1] x [0,1], each reparametrised to [0,1]^2.
+/// \throws InvalidInput unless 0 < u < 1.
+std::pair<RationalBezierPatch, RationalBezierPatch> split_u(const RationalBezierPatch& patch, double u);
+/// The pieces over [0,1] x [0,v] and [0,1] x [v,1]. \throws InvalidInput unless 0 < v < 1.
+std::pair<RationalBezierPatch, RationalBezierPatch> split_v(const RationalBezierPatch& patch, double v);
+/// The piece over [u0,u1] x [v0,v1], reparametrised to [0,1]^2.
+/// \throws InvalidInput unless 0 <= u0 < u1 <= 1 and 0 <= v0 < v1 <= 1.
+RationalBezierPatch subpatch(const RationalBezierPatch& patch, double u0, double u1, double v0, double v1);
+/// The same surface with degrees (n + times_u, m + times_v). \throws InvalidInput if negative.
+RationalBezierPatch elevate_degree(const RationalBezierPatch& patch, int times_u, int times_v);
+/// The curve v -> F(u, v) for fixed u.
+RationalBezierCurve3 iso_curve_u(const RationalBezierPatch& patch, double u);
+/// The curve u -> F(u, v) for fixed v.
+RationalBezierCurve3 iso_curve_v(const RationalBezierPatch& patch, double v);
+/// The boundary curve of an edge, in the direction of increasing u (v0, v1) or v (u0, u1).
+RationalBezierCurve3 boundary_curve(const RationalBezierPatch& patch, PatchEdge edge);
 
 /// The unit sphere's octant x, y, z >= 0 (scaled by radius, moved to center) as a degree (2,2)
 /// rational patch: the quarter circle (1,0,0) -> (0,0,1) in the xz-plane, weights (1, 1/sqrt2, 1),

@@ -7,6 +7,7 @@
 #include <rapidcheck/gtest.h>
 
 #include "core/errors.h"
+#include "surfaces/patch_bounding_box.h"
 #include "surfaces/rational_bounds.h"
 #include "surfaces/surface_normal.h"
 #include "tests/surfaces/patch_fixtures.h"
@@ -192,6 +193,74 @@ TEST(RationalBounds, SphereOctantGridMeetsItsTolerance) {
     EXPECT_LE(measured, tolerance) << nu << " x " << nv;
     EXPECT_GT(measured, 0.3 * tolerance) << "the grid is not wastefully fine";
     std::cout << "tolerance " << tolerance << ": grid " << nu << " x " << nv << ", measured " << measured << "\n";
+  }
+}
+
+// Split, sub-patch, degree elevation, iso and boundary curves of the homogeneous net describe
+// the same rational surface: equal points at random parameters.
+RC_GTEST_PROP(RationalBezierPatch, OperationsKeepTheSurface, ()) {
+  const RationalBezierPatch patch = *random_rational_patch();
+  const double u = *testing::coordinate(0.05, 0.95);
+  const double v = *testing::coordinate(0.05, 0.95);
+  const double s = *testing::coordinate(0, 1);
+  const double t = *testing::coordinate(0, 1);
+  double scale = 1.0;
+  for (int j = 0; j <= patch.degree_v(); ++j) {
+    for (int i = 0; i <= patch.degree_u(); ++i) scale = std::max(scale, patch.control_point(i, j).norm());
+  }
+  // Weights in [0.2, 5]: the quotient loses up to their ratio's worth of digits.
+  const double tolerance = 1e-11 * scale;
+  const auto near = [&](const Vec3& a, const Vec3& b) { return (a - b).norm() <= tolerance; };
+  const auto [left, right] = split_u(patch, u);
+  RC_ASSERT(near(left.evaluate(s, t), patch.evaluate(s * u, t)));
+  RC_ASSERT(near(right.evaluate(s, t), patch.evaluate(u + s * (1 - u), t)));
+  const auto [low, high] = split_v(patch, v);
+  RC_ASSERT(near(low.evaluate(s, t), patch.evaluate(s, t * v)));
+  RC_ASSERT(near(high.evaluate(s, t), patch.evaluate(s, v + t * (1 - v))));
+  const RationalBezierPatch piece = subpatch(patch, 0.5 * u, u, v, 0.5 + 0.5 * v);
+  RC_ASSERT(near(piece.evaluate(s, t), patch.evaluate(0.5 * u + s * 0.5 * u, v + t * (0.5 - 0.5 * v))));
+  const RationalBezierPatch raised = elevate_degree(patch, 2, 1);
+  RC_ASSERT(raised.degree_u() == patch.degree_u() + 2 && raised.degree_v() == patch.degree_v() + 1);
+  RC_ASSERT(near(raised.evaluate(s, t), patch.evaluate(s, t)));
+  RC_ASSERT(near(iso_curve_u(patch, u).evaluate(t), patch.evaluate(u, t)));
+  RC_ASSERT(near(iso_curve_v(patch, v).evaluate(s), patch.evaluate(s, v)));
+  RC_ASSERT(near(boundary_curve(patch, PatchEdge::v1).evaluate(s), patch.evaluate(s, 1)));
+  RC_ASSERT(near(boundary_curve(patch, PatchEdge::u0).evaluate(t), patch.evaluate(0, t)));
+}
+
+// The tight box of the sphere's octant is [c, c + r]^3 to within the tolerance, and a box of a
+// random rational patch holds every sampled point, each face within the tolerance of a sample.
+TEST(RationalBezierPatch, TightBoxOfTheSphereOctant) {
+  const Vec3 centre(0.5, -1, 2);
+  const double r = 3.0;
+  const double tolerance = 1e-9;
+  const Eigen::AlignedBox3d box = bounding_box(sphere_octant(centre, r), tolerance);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GE(box.max()[c], centre[c] + r - 1e-15 * r);
+    EXPECT_LE(box.max()[c], centre[c] + r + tolerance);
+    EXPECT_LE(box.min()[c], centre[c] + 1e-15 * r);
+    EXPECT_GE(box.min()[c], centre[c] - tolerance);
+  }
+}
+
+RC_GTEST_PROP(RationalBezierPatch, TightBoxHoldsTheSurface, ()) {
+  const RationalBezierPatch patch = *random_rational_patch();
+  const double tolerance = 1e-6;
+  const Eigen::AlignedBox3d box = bounding_box(patch, tolerance);
+  Eigen::AlignedBox3d sampled;
+  for (int j = 0; j <= 40; ++j) {
+    for (int i = 0; i <= 40; ++i) sampled.extend(patch.evaluate(i / 40.0, j / 40.0));
+  }
+  for (int c = 0; c < 3; ++c) {
+    RC_ASSERT(box.max()[c] >= sampled.max()[c] - 1e-12);
+    RC_ASSERT(box.min()[c] <= sampled.min()[c] + 1e-12);
+  }
+  // Tight: each face within the tolerance of the true extreme, which the samples approach
+  // (within the sampling gap of a 40 x 40 grid, far below the box of the control points).
+  const Vec3 slack = 0.05 * (box.max() - box.min()) + Vec3::Constant(tolerance);
+  for (int c = 0; c < 3; ++c) {
+    RC_ASSERT(box.max()[c] <= sampled.max()[c] + slack[c]);
+    RC_ASSERT(box.min()[c] >= sampled.min()[c] - slack[c]);
   }
 }
 
