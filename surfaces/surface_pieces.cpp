@@ -1,0 +1,205 @@
+// Patch sets as the tessellator's pieces: whole patches with their shared and collapsed edges,
+// T-junctions, weld gaps and solids, or each patch split k x k (surfaces/tessellator.h).
+
+#include <algorithm>
+#include <optional>
+
+#include "core/errors.h"
+#include "surfaces/patch_bounding_box.h"
+#include "surfaces/patch_grid.h"
+#include "surfaces/surface_integrals.h"
+#include "surfaces/tessellator_stages.h"
+
+namespace patchwork {
+namespace detail {
+
+// The 4 x 4 sub-net bounds of every patch (what the rates of whole and split patches rest on).
+std::vector<std::vector<SecondDerivativeBounds>> cell_bounds(const PatchSet& set) {
+  if (!(set.size() > 0.0)) {
+    throw InvalidInput("tessellate: every control point is the same point: there is no surface to tessellate");
+  }
+  std::vector<std::vector<SecondDerivativeBounds>> cells;
+  for (const BezierPatch3& patch : set.patches()) cells.push_back(piece_second_derivative_bounds(patch, bound_pieces));
+  return cells;
+}
+
+// The bounds of piece (a, b) of a k x k split, in the piece's parameters: the largest cell bound
+// over the piece, times (1/k)^2 by the chain rule. k = 1 is the whole patch.
+SecondDerivativeBounds split_bounds(const std::vector<SecondDerivativeBounds>& cells, int k, int a, int b) {
+  const int span = bound_pieces / k;
+  std::optional<SecondDerivativeBounds> M;
+  for (int y = b * span; y < (b + 1) * span; ++y) {
+    for (int x = a * span; x < (a + 1) * span; ++x) {
+      const SecondDerivativeBounds& c = cells[static_cast<std::size_t>(x + bound_pieces * y)];
+      M = M ? merged_bounds(*M, c) : c;
+    }
+  }
+  return scaled_bounds(*M, 1.0 / k);
+}
+
+double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {
+  if (!tight_diagonal) return set.size();
+  return bounding_box(std::span<const BezierPatch3>(set.patches()), 1e-6 * set.size()).diagonal().norm();
+}
+
+// Per patch, the largest gap of its joined edges (SurfacePieces::gaps): the control-point gap of
+// its shared edges and T-junctions (which bounds the curves' distance point for point, the
+// curves being convex combinations of their control points) and the spread of its collapsed
+// edges' control points around the point they weld to.
+std::vector<double> edge_gaps(const PatchSet& set) {
+  std::vector<double> gaps(set.patches().size(), 0.0);
+  const auto widen = [&](std::uint32_t p, double gap) { gaps[p] = std::max(gaps[p], gap); };
+  for (const SharedEdge& s : set.shared_edges()) {
+    widen(s.first.patch, s.continuity.gap);
+    widen(s.second.patch, s.continuity.gap);
+  }
+  for (const TJunction& t : set.t_junctions()) {
+    widen(t.edge.patch, t.gap);
+    for (const EdgeRef& part : t.parts) widen(part.patch, t.gap);
+  }
+  for (const EdgeRef& e : set.collapsed_edges()) {
+    const std::vector<Vec3> row = row_from_edge(set.patches()[e.patch], e.edge, 0);
+    for (const Vec3& q : row) widen(e.patch, (q - row.front()).norm());
+  }
+  return gaps;
+}
+
+// Per patch, the solid it bounds, or -1 (SurfacePieces::solids).
+std::vector<std::int32_t> solids_of(const PatchSet& set) {
+  std::vector<std::int32_t> solids(set.patches().size(), -1);
+  std::int32_t next = 0;
+  for (const Shell& shell : shells(set)) {
+    if (!shell.closed || !shell.consistently_oriented) continue;
+    double volume = 0.0;
+    for (std::uint32_t p : shell.patches) volume += volume_contribution(set.patches()[p]);
+    if (!(volume > 0.0)) continue;
+    for (std::uint32_t p : shell.patches) solids[p] = next;
+    ++next;
+  }
+  return solids;
+}
+
+// Pieces of `set`, each patch split k x k (k = 1: the patches themselves).
+SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k,
+                        double diagonal, bool with_solids) {
+  const std::vector<BezierPatch3>& patches = set.patches();
+  SurfacePieces pieces;
+  pieces.diagonal = diagonal;
+  if (k == 1) {
+    pieces.count = patches.size();
+    pieces.patches = &patches;
+    for (const SharedEdge& shared : set.shared_edges())
+      pieces.shared.push_back({shared.first, shared.second, shared.reversed});
+    pieces.collapsed = set.collapsed_edges();
+    pieces.t_junctions = set.t_junctions();
+    pieces.gaps = edge_gaps(set);
+    if (with_solids) pieces.solids = solids_of(set);
+    for (std::size_t p = 0; p < patches.size(); ++p) pieces.bounds.push_back(split_bounds(cells[p], 1, 0, 0));
+    pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
+                                      GridSamplesView out) {
+      const BezierPatch3& patch = patches[p];
+      evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), us, vs), out);
+    };
+    pieces.evaluate = [&patches](std::uint32_t p, double u, double v) { return patches[p].evaluate(u, v); };
+    return pieces;
+  }
+  // Piece (a, b) of patch p is number p k^2 + a + k b.
+  const auto kk = static_cast<std::uint32_t>(k * k);
+  const auto piece = [k, kk](std::uint32_t p, int a, int b) { return p * kk + static_cast<std::uint32_t>(a + k * b); };
+  // The k pieces along a patch edge, in its boundary_curve direction (u along v0 and v1, v along u0 and u1).
+  const auto along = [&](const EdgeRef& edge, int i) -> EdgeRef {
+    const int last = k - 1;
+    switch (edge.edge) {
+      case PatchEdge::v0:
+        return {piece(edge.patch, i, 0), PatchEdge::v0};
+      case PatchEdge::v1:
+        return {piece(edge.patch, i, last), PatchEdge::v1};
+      case PatchEdge::u0:
+        return {piece(edge.patch, 0, i), PatchEdge::u0};
+      case PatchEdge::u1:
+        return {piece(edge.patch, last, i), PatchEdge::u1};
+    }
+    return edge;
+  };
+  pieces.count = patches.size() * kk;
+  pieces.patch_count = patches.size();
+  const std::vector<double> patch_gaps = edge_gaps(set);
+  if (std::any_of(patch_gaps.begin(), patch_gaps.end(), [](double g) { return g > 0.0; })) {
+    for (double g : patch_gaps) pieces.gaps.insert(pieces.gaps.end(), kk, g);
+  }
+  const double size = 1.0 / k;  // exact for k = 2, 4: the split lines a/k are exact too
+  for (std::uint32_t p = 0; p < patches.size(); ++p) {
+    for (int b = 0; b < k; ++b) {
+      for (int a = 0; a < k; ++a) {
+        pieces.domains.push_back({p, a * size, b * size, size});
+        pieces.bounds.push_back(split_bounds(cells[p], k, a, b));
+        if (a + 1 < k)
+          pieces.shared.push_back({{piece(p, a, b), PatchEdge::u1}, {piece(p, a + 1, b), PatchEdge::u0}, false});
+        if (b + 1 < k)
+          pieces.shared.push_back({{piece(p, a, b), PatchEdge::v1}, {piece(p, a, b + 1), PatchEdge::v0}, false});
+      }
+    }
+  }
+  for (const SharedEdge& shared : set.shared_edges()) {
+    for (int i = 0; i < k; ++i) {
+      pieces.shared.push_back(
+          {along(shared.first, i), along(shared.second, shared.reversed ? k - 1 - i : i), shared.reversed});
+    }
+  }
+  for (const EdgeRef& collapsed : set.collapsed_edges()) {
+    for (int i = 0; i < k; ++i) pieces.collapsed.push_back(along(collapsed, i));
+  }
+  const std::vector<SurfacePieces::Domain>& domains = pieces.domains;
+  pieces.evaluate_grid = [&patches, domains](std::uint32_t q, std::span<const double> us, std::span<const double> vs,
+                                             GridSamplesView out) {
+    const SurfacePieces::Domain& d = domains[q];
+    std::vector<double> patch_us(us.begin(), us.end());
+    std::vector<double> patch_vs(vs.begin(), vs.end());
+    for (double& u : patch_us) u = d.u0 + d.size * u;
+    for (double& v : patch_vs) v = d.v0 + d.size * v;
+    const BezierPatch3& patch = patches[d.patch];
+    evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), patch_us, patch_vs), out);
+  };
+  pieces.evaluate = [&patches, domains](std::uint32_t q, double u, double v) {
+    const SurfacePieces::Domain& d = domains[q];
+    return patches[d.patch].evaluate(d.u0 + d.size * u, d.v0 + d.size * v);
+  };
+  return pieces;
+}
+
+SplitEstimate estimated_split(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps) {
+  SplitEstimate estimate;
+  for (const auto& patch_cells : cells) {
+    for (int b = 0; b < k; ++b) {
+      for (int a = 0; a < k; ++a) {
+        const SecondDerivativeBounds M = split_bounds(patch_cells, k, a, b);
+        estimate.grids.push_back(grid_for_tolerance(M, eps, least_segments(M)));
+        estimate.cells += estimate.grids.back().segments_u * estimate.grids.back().segments_v;
+      }
+    }
+  }
+  return estimate;
+}
+
+}  // namespace detail
+
+using detail::cell_bounds;
+using detail::pieces_of;
+using detail::tight_or_control_diagonal;
+
+SurfacePieces surface_pieces(const PatchSet& set, bool tight_diagonal) {
+  const auto cells = cell_bounds(set);
+  return pieces_of(set, cells, 1, tight_or_control_diagonal(set, tight_diagonal));
+}
+
+SurfacePieces split_surface_pieces(const PatchSet& set, int k, bool tight_diagonal) {
+  if (k != 2 && k != 4) throw InvalidInput(detail::message("split_surface_pieces: k = ", k, " is not 2 or 4"));
+  if (!set.t_junctions().empty()) {
+    throw InvalidInput(detail::message("split_surface_pieces: the set has ", set.t_junctions().size(),
+                                       " T-junctions, which split pieces do not join"));
+  }
+  const auto cells = cell_bounds(set);
+  return pieces_of(set, cells, k, tight_or_control_diagonal(set, tight_diagonal));
+}
+
+}  // namespace patchwork
