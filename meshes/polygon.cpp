@@ -1,6 +1,8 @@
 #include "meshes/polygon.h"
 
+#include <algorithm>
 #include <array>
+#include <optional>
 #include <cmath>
 #include <string>
 
@@ -92,10 +94,46 @@ Projection project(std::span<const Vec3> polygon) {
   const auto u = (axis + 1) % 3, v = (axis + 2) % 3;
   Projection projection;
   projection.collinear = direction == Vec3::Zero();
-  projection.orientation = (normal[axis] > 0) - (normal[axis] < 0);
   projection.points.reserve(polygon.size());
   for (const Vec3& p : polygon) projection.points.emplace_back(p[u], p[v]);
+  // The orientation exactly, at the lowest corner (smallest x, then y): a simple polygon turns
+  // there the way it runs (the Newell normal, in floating point, can get a thin sliver's sign
+  // wrong). Meaningful only for a simple projection, which the callers check.
+  const std::vector<Vec2>& q = projection.points;
+  const std::size_t k = q.size();
+  std::size_t lowest = 0;
+  for (std::size_t i = 1; i < k; ++i) {
+    if (q[i].x() < q[lowest].x() || (q[i].x() == q[lowest].x() && q[i].y() < q[lowest].y())) lowest = i;
+  }
+  const double turn = orient2d(q[(lowest + k - 1) % k], q[lowest], q[(lowest + 1) % k]);
+  projection.orientation = (turn > 0) - (turn < 0);
   return projection;
+}
+
+// Whether the projected polygon is strictly convex, decided exactly in O(k): every corner turns
+// the same way (orient2d) and the edges' directions go round once (dy changes sign twice; a
+// pentagram, whose turns agree too, goes round twice). Its orientation then is that turn.
+std::optional<int> strictly_convex(const std::vector<Vec2>& q) {
+  const std::size_t k = q.size();
+  int sign = 0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const double turn = orient2d(q[(i + k - 1) % k], q[i], q[(i + 1) % k]);
+    const int t = (turn > 0) - (turn < 0);
+    if (t == 0 || (sign != 0 && t != sign)) return std::nullopt;
+    sign = t;
+  }
+  int changes = 0;
+  int last = 0;
+  for (std::size_t i = 0; i <= k; ++i) {
+    const double dy = q[(i + 1) % k].y() - q[i % k].y();
+    const int d = (dy > 0) - (dy < 0);
+    if (d == 0) continue;
+    if (last != 0 && d != last) ++changes;
+    last = d;
+  }
+  // Counted over one round plus the first edge again, so the wrap-around change is in.
+  if (changes != 2) return std::nullopt;
+  return sign;
 }
 
 // Whether the closed polygon `points` has a repeated corner or two edges that meet other than
@@ -176,6 +214,14 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(std::span<const Ve
   if (projection.collinear) {
     throw InvalidInput("triangulate_polygon: the polygon has zero area (its corners are collinear)");
   }
+  // The common case in O(k): a convex polygon is the fan from corner 0, as ear clipping from
+  // corner 1 on would give.
+  if (strictly_convex(projection.points)) {
+    std::vector<std::array<std::uint32_t, 3>> fan;
+    fan.reserve(k - 2);
+    for (std::uint32_t i = 1; i + 1 < k; ++i) fan.push_back({0, i, i + 1});
+    return fan;
+  }
   std::string what;
   if (self_intersects(projection.points, &what)) {
     throw InvalidInput("triangulate_polygon: the polygon is not simple (" + what + ")");
@@ -229,6 +275,16 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(std::span<const Ve
   return triangles;
 }
 
+namespace {
+
+// The message of a face that triangulate_polygon refused, naming the face.
+std::string failed_face(std::size_t f, std::size_t corners, const std::string& what) {
+  const std::string reason = what.substr(std::string("triangulate_polygon: ").size());
+  return detail::message("triangulate_faces: face ", f, " (", corners, " corners) cannot be triangulated: ", reason);
+}
+
+}  // namespace
+
 std::vector<std::uint32_t> triangulate_faces(const FaceVertexMesh& mesh) {
   std::vector<std::uint32_t> indices;
   if (mesh.face_indices().size() >= 2 * mesh.face_count()) {
@@ -243,9 +299,9 @@ std::vector<std::uint32_t> triangulate_faces(const FaceVertexMesh& mesh) {
     try {
       triangles = triangulate_polygon(corners);
     } catch (const InvalidInput& e) {
-      const std::string reason = std::string(e.what()).substr(std::string("triangulate_polygon: ").size());
-      throw InvalidInput(detail::message("triangulate_faces: face ", f, " (", face.size(),
-                                         " corners) cannot be triangulated: ", reason));
+      throw InvalidInput(failed_face(f, face.size(), e.what()));
+    } catch (const NumericalError& e) {
+      throw NumericalError(failed_face(f, face.size(), e.what()));
     }
     for (const auto& triangle : triangles) {
       for (const std::uint32_t corner : triangle) indices.push_back(face[corner]);

@@ -4,6 +4,7 @@
 #include "meshes/polygon.h"
 
 #include <gtest/gtest.h>
+#include <gmpxx.h>
 #include <rapidcheck/gtest.h>
 
 #include <Eigen/Geometry>
@@ -280,6 +281,38 @@ void check_triangulation(const std::vector<Vec2>& polygon, int frame) {
   }
   RC_ASSERT(sum == normal);  // the areas add up to the polygon's, exactly (integers)
   RC_ASSERT(std::abs(normal.norm()) == std::abs(twice_shoelace(polygon)) / 2);
+}
+
+// Thin slivers far from the origin, where the Newell normal in floating point gets the sign or
+// zero wrong (found by a review with exact fractions): every triangle turns the polygon's way and
+// their areas add up to the polygon's, all in exact rational arithmetic.
+TEST(Triangulate, ThinSliversAreOrientedExactly) {
+  const auto exact_twice_area = [](const Vec2& a, const Vec2& b, const Vec2& c) {
+    const mpq_class ax(a.x()), ay(a.y()), bx(b.x()), by(b.y()), cx(c.x()), cy(c.y());
+    return mpq_class((bx - ax) * (cy - ay) - (by - ay) * (cx - ax));
+  };
+  const std::vector<std::vector<Vec2>> slivers = {
+      {{370000, 370000}, {370001, 370000.0000000002}, {370000.32532246766, 370000.00000000006},
+       {370000.30927916605, 370000.00000000006}},
+      {{77.7, 77.7}, {78.7, 77.70000000000002}, {78.64702227791433, 77.70000000000002},
+       {78.35912186302335, 77.70000000000002}}};
+  for (const std::vector<Vec2>& sliver : slivers) {
+    std::vector<Vec3> corners;
+    for (const Vec2& p : sliver) corners.emplace_back(p.x(), p.y(), 0.0);
+    mpq_class polygon = 0;
+    for (std::size_t i = 1; i + 1 < sliver.size(); ++i) polygon += exact_twice_area(sliver[0], sliver[i], sliver[i + 1]);
+    ASSERT_NE(sgn(polygon), 0);
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    ASSERT_NO_THROW(triangles = triangulate_polygon(corners));
+    ASSERT_EQ(triangles.size(), 2u);
+    mpq_class sum = 0;
+    for (const auto& t : triangles) {
+      const mpq_class area = exact_twice_area(sliver[t[0]], sliver[t[1]], sliver[t[2]]);
+      EXPECT_EQ(sgn(area), sgn(polygon)) << "triangle (" << t[0] << ", " << t[1] << ", " << t[2] << ")";
+      sum += area;
+    }
+    EXPECT_EQ(sum, polygon);
+  }
 }
 
 TEST(Triangulate, LShapedHexagonGivesFourTrianglesOfAreaThree) {
