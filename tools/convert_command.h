@@ -1,7 +1,7 @@
 #pragma once
 // `patchwork convert IN OUT`: between the mesh formats (OBJ, OFF, PLY) and glTF (.glb, .gltf),
-// chosen by extension. A mesh becomes glTF with its polygons fanned into triangles (from each
-// face's first corner: exact for convex faces) and angle-weighted vertex normals split at creases
+// chosen by extension. A mesh becomes glTF with its polygons triangulated (ear clipping in
+// each face's plane, meshes/polygon.h; self-intersecting faces refused) and angle-weighted vertex normals split at creases
 // over 30 degrees (meshes/normals.h); glTF becomes a mesh through its welded positions.
 
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
 // `patchwork subdivide IN.(obj|off|ply) --scheme S --levels K -o OUT`: uniform subdivision
-// through OpenSubdiv (subdivision/refine.h), written as a polygon mesh (glTF: fanned, with
-// normals); with --limit the limit surface tessellated within a tolerance instead
+// through OpenSubdiv (subdivision/refine.h), written as a polygon mesh (glTF: faces triangulated,
+// with normals); with --limit the limit surface tessellated within a tolerance instead
 // (subdivision/limit_tessellator.h; relative tolerance 1e-3 unless a mode is given), a render-ready
 // mesh like the teapot's.
 

@@ -7,7 +7,7 @@
 // Prints patches, triangles, vertices, seconds (the tessellation alone, every level with --lod), the absolute tolerance,
 // the guaranteed error bound, the file's bound, the measured error and the culled patches; with
 // --json one object with exactly the keys patches, triangles, vertices, seconds, tolerance,
-// error_bound, file_error_bound, measured_error, culled_patches. error_bound is the mesh's (in
+// error_bound, file_error_bound, weld_gap, measured_error, culled_patches. error_bound is the mesh's (in
 // double); file_error_bound is the file's: error_bound plus the bound on the float rounding of
 // the positions glTF stores (GltfEncoding::position_rounding, io/gltf.h), and error_bound itself
 // for OBJ, OFF and PLY, which hold the doubles exactly. OBJ, OFF and PLY get the welded

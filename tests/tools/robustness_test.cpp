@@ -216,6 +216,9 @@ TEST(Robustness, EveryBadInputGetsOneLineExitOneAndNoFile) {
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << bad.arguments << "\n" << err;
     // The line names the file first, as "patchwork: FILE: ..." or "patchwork: FILE:LINE:COLUMN: ...".
     EXPECT_EQ(err.rfind("patchwork: " + named_file(bad) + ":", 0), 0u) << bad.arguments << "\n" << err;
+    // Once: a library error the CLI names must not name the file again.
+    const std::string after = err.substr(std::string("patchwork: ").size() + named_file(bad).size() + 1);
+    EXPECT_EQ(after.find(" " + named_file(bad) + ":"), std::string::npos) << "the file is named twice: " << err;
     EXPECT_FALSE(fs::exists(folder.path() / "out.glb") || fs::exists(folder.path() / "out.obj")) << bad.arguments;
     EXPECT_EQ(slurp(folder.path() / "keep.glb"), "previous contents");
     // Nothing is left behind: not the output, not the atomic writer's temporary (a hidden
