@@ -292,24 +292,32 @@ void evaluate_grid_portable(const BezierPatch3& patch, const PatchGridWeights& w
 }
 }  // namespace detail
 
+namespace detail {
+
+void check_grid_output(int n, int m, const PatchGridWeights& weights, const GridSamplesView& out) {
+  if (weights.degree_u() != n || weights.degree_v() != m) {
+    throw InvalidInput(message("evaluate_grid: weights of degrees (", weights.degree_u(), ", ", weights.degree_v(),
+                               ") for a patch of degrees (", n, ", ", m, ")"));
+  }
+  const std::size_t count = weights.us().size() * weights.vs().size();
+  if (out.points.size() < count || out.normals.size() < count || (!out.tangents.empty() && out.tangents.size() < count)) {
+    throw InvalidInput(message("evaluate_grid: room for ", std::min(out.points.size(), out.normals.size()),
+                               " samples, the grid has ", count));
+  }
+}
+
+}  // namespace detail
+
 namespace {
 
 void evaluate_grid_with(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out,
                         bool allow_avx2) {
   const int n = patch.degree_u();
   const int m = patch.degree_v();
-  if (weights.degree_u() != n || weights.degree_v() != m) {
-    throw InvalidInput(detail::message("evaluate_grid: weights of degrees (", weights.degree_u(), ", ",
-                                       weights.degree_v(), ") for a patch of degrees (", n, ", ", m, ")"));
-  }
+  detail::check_grid_output(n, m, weights, out);
   const std::size_t count_u = weights.us().size();
   const std::size_t count_v = weights.vs().size();
-  const std::size_t count = count_u * count_v;
   const bool with_tangents = !out.tangents.empty();
-  if (out.points.size() < count || out.normals.size() < count || (with_tangents && out.tangents.size() < count)) {
-    throw InvalidInput(detail::message("evaluate_grid: room for ", std::min(out.points.size(), out.normals.size()),
-                                       " samples, the grid has ", count));
-  }
   // Degeneracy is judged as in unit_normal: relative to the net's size.
   Eigen::AlignedBox3d box(patch.control_points().front());
   for (const Vec3& p : patch.control_points()) box.extend(p);
@@ -344,22 +352,8 @@ void evaluate_grid_with(const BezierPatch3& patch, const PatchGridWeights& weigh
         du += dbu[i] * Q[i];
         dv += bu[i] * dQ[i];
       }
-      const std::size_t index = a + count_u * b;
-      out.points[index] = point;
-      const Vec3 normal = du.cross(dv);
-      const double length = normal.norm();
-      const bool regular = length > threshold;
-      const Vec3 unit = regular ? Vec3(normal / length) : unit_normal(patch, weights.us()[a], weights.vs()[b]);
-      out.normals[index] = unit;
-      if (!with_tangents) continue;
-      const Vec3 tangent = du - du.dot(unit) * unit;
-      if (regular && tangent.norm() > derivative_threshold) {
-        // Regular point: F_u lies in the tangent plane and (n x F_u) . F_v = n . (F_u x F_v) > 0.
-        const Vec3 t = tangent.normalized();
-        out.tangents[index] = Vec4(t.x(), t.y(), t.z(), 1.0);
-      } else {
-        out.tangents[index] = unit_tangent(patch, weights.us()[a], weights.vs()[b], unit);
-      }
+      detail::store_sample(patch, weights.us()[a], weights.vs()[b], point, du, dv, threshold, derivative_threshold,
+                           a + count_u * b, out);
     }
   }
 }

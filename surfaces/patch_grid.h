@@ -12,6 +12,8 @@
 
 #include "curves/bernstein.h"
 #include "surfaces/bezier_patch.h"
+#include "surfaces/rational_bezier_patch.h"
+#include "surfaces/surface_normal.h"
 
 namespace patchwork {
 
@@ -79,7 +81,40 @@ struct GridSamplesView {
 ///         shorter than the grid (tangents: empty or at least as long).
 void evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out);
 
+/// evaluate_grid for a rational patch: F = H / w and its unit normals (the limit normal where
+/// F_u x F_v vanishes, as at a NURBS sphere's poles) and tangents, from the homogeneous net H
+/// contracted as above (F_u = (H_u - F w_u) / w, likewise F_v). Not vectorised.
+/// \throws InvalidInput as evaluate_grid(BezierPatch3, ...) does.
+void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& weights, GridSamplesView out);
+
 namespace detail {
+/// Checks the weights' degrees against (n, m) and the room in `out`. \throws InvalidInput.
+void check_grid_output(int n, int m, const PatchGridWeights& weights, const GridSamplesView& out);
+
+/// Stores sample `index` of `out` from F, F_u and F_v at (u, v) of `patch`: the unit normal
+/// from F_u x F_v where its length exceeds `threshold`, else the limit normal; the tangent (when
+/// out has tangents) from F_u where it keeps `derivative_threshold` off the normal, else
+/// unit_tangent's limit.
+template <class Patch>
+void store_sample(const Patch& patch, double u, double v, const Vec3& point, const Vec3& du, const Vec3& dv,
+                  double threshold, double derivative_threshold, std::size_t index, GridSamplesView& out) {
+  out.points[index] = point;
+  const Vec3 normal = du.cross(dv);
+  const double length = normal.norm();
+  const bool regular = length > threshold;
+  const Vec3 unit = regular ? Vec3(normal / length) : unit_normal(patch, u, v);
+  out.normals[index] = unit;
+  if (out.tangents.empty()) return;
+  const Vec3 tangent = du - du.dot(unit) * unit;
+  if (regular && tangent.norm() > derivative_threshold) {
+    // Regular point: F_u lies in the tangent plane and (n x F_u) . F_v = n . (F_u x F_v) > 0.
+    const Vec3 t = tangent.normalized();
+    out.tangents[index] = Vec4(t.x(), t.y(), t.z(), 1.0);
+  } else {
+    out.tangents[index] = unit_tangent(patch, u, v, unit);
+  }
+}
+
 /// evaluate_grid(patch, weights, out) without the instruction-set dispatch (AVX2 where the
 /// processor has it): the reference the dispatched kernel must match bit for bit (tests).
 void evaluate_grid_portable(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out);

@@ -8,54 +8,23 @@
 #include <ostream>
 #include <sstream>
 #include <unordered_map>
+#include <utility>
+#include <variant>
 
 #include "core/errors.h"
 #include "core/union_find.h"
 #include "curves/continuity.h"
 #include "curves/degree.h"
 #include "curves/subdivision.h"
-#include "surfaces/surface_normal.h"
+#include "surfaces/patch_edge_geometry.h"
 
 namespace patchwork {
 namespace {
 
 constexpr PatchEdge all_edges[4] = {PatchEdge::v0, PatchEdge::u1, PatchEdge::v1, PatchEdge::u0};
 
-// Whether the counter-clockwise walk runs along boundary_curve(edge) (v0, u1) or against it.
-bool walks_forward(PatchEdge edge) { return edge == PatchEdge::v0 || edge == PatchEdge::u1; }
-
-int degree_along(const BezierPatch3& patch, PatchEdge edge) {
-  return (edge == PatchEdge::v0 || edge == PatchEdge::v1) ? patch.degree_u() : patch.degree_v();
-}
-
-int degree_across(const BezierPatch3& patch, PatchEdge edge) {
-  return (edge == PatchEdge::v0 || edge == PatchEdge::v1) ? patch.degree_v() : patch.degree_u();
-}
-
-// The patch elevated along `edge` to `degree`.
-BezierPatch3 elevated_along(const BezierPatch3& patch, PatchEdge edge, int degree) {
-  const int times = degree - degree_along(patch, edge);
-  const bool along_u = edge == PatchEdge::v0 || edge == PatchEdge::v1;
-  return elevate_degree(patch, along_u ? times : 0, along_u ? 0 : times);
-}
-
-// (u, v) of the point at s in [0,1] along boundary_curve(edge).
-Vec2 edge_parameter(PatchEdge edge, double s) {
-  switch (edge) {
-    case PatchEdge::v0: return {s, 0.0};
-    case PatchEdge::u1: return {1.0, s};
-    case PatchEdge::v1: return {s, 1.0};
-    case PatchEdge::u0: return {0.0, s};
-  }
-  return {s, 0.0};
-}
-
-// Largest distance between corresponding points, b read backwards when reversed.
-double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool reversed) {
-  double result = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) result = std::max(result, (a[i] - b[reversed ? b.size() - 1 - i : i]).norm());
-  return result;
-}
+using detail::max_distance;
+using detail::walks_forward;
 
 // Points hashed into cubic cells; queries return the ids within the 27 neighbouring cells.
 class PointGrid {
@@ -201,77 +170,89 @@ const char* edge_name(PatchEdge edge) {
   return "?";
 }
 
-EdgeContinuity edge_continuity(const BezierPatch3& first_patch, PatchEdge first_edge, const BezierPatch3& second_patch,
-                               PatchEdge second_edge, bool reversed, double relative_tolerance) {
-  const int along = std::max(degree_along(first_patch, first_edge), degree_along(second_patch, second_edge));
-  const BezierPatch3 first = elevated_along(first_patch, first_edge, along);
-  const BezierPatch3 second = elevated_along(second_patch, second_edge, along);
-  const int n1 = degree_across(first, first_edge);
-  const int n2 = degree_across(second, second_edge);
-  EdgeContinuity result{max_distance(row_from_edge(first, first_edge, 0), row_from_edge(second, second_edge, 0), reversed),
-                        std::max(n1, n2), false, 0.0};
-  // Column i across the edge: ending at the edge in `first`, starting there in `second`. The
-  // join is C^k across the edge exactly when every column pair joins C^k (Bemerkung 18 per column).
-  for (int i = 0; i <= along; ++i) {
-    std::vector<Vec3> column_first(static_cast<std::size_t>(n1) + 1);
-    std::vector<Vec3> column_second(static_cast<std::size_t>(n2) + 1);
-    for (int l = 0; l <= n1; ++l) column_first[static_cast<std::size_t>(n1 - l)] = row_from_edge(first, first_edge, l)[static_cast<std::size_t>(i)];
-    const int i2 = reversed ? along - i : i;
-    for (int l = 0; l <= n2; ++l) column_second[static_cast<std::size_t>(l)] = row_from_edge(second, second_edge, l)[static_cast<std::size_t>(i2)];
-    const Continuity c = continuity(BezierCurve3(column_first), BezierCurve3(column_second), std::max(n1, n2), relative_tolerance);
-    result.ck = std::min(result.ck, c.ck);
+namespace {
+
+// The nets and, where a patch is rational (weights not all equal), the rational patches.
+PatchSet::Kinds split_kinds(std::span<const AnyBezierPatch> patches) {
+  std::vector<BezierPatch3> nets;
+  std::vector<std::optional<RationalBezierPatch>> rational(patches.size());
+  nets.reserve(patches.size());
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    if (const auto* polynomial = std::get_if<BezierPatch3>(&patches[p])) {
+      nets.push_back(*polynomial);
+      continue;
+    }
+    const RationalBezierPatch& patch = std::get<RationalBezierPatch>(patches[p]);
+    const std::vector<double> weights = patch.weights();
+    nets.push_back(patch.control_net());
+    if (std::any_of(weights.begin(), weights.end(), [&](double w) { return w != weights.front(); })) rational[p] = patch;
   }
-  // G^1 from sampled normals; with the orientations opposite along the edge, normals agree.
-  const bool opposite_walks = walks_forward(first_edge) != (walks_forward(second_edge) != reversed);
-  const int samples = 4 * std::max(first.degree_u(), first.degree_v()) + 1;
-  for (int k = 0; k < samples; ++k) {
-    const double s = static_cast<double>(k) / (samples - 1);
-    const Vec2 p1 = edge_parameter(first_edge, s);
-    const Vec2 p2 = edge_parameter(second_edge, reversed ? 1.0 - s : s);
-    const Vec3 n1v = unit_normal(first, p1.x(), p1.y());
-    Vec3 n2v = unit_normal(second, p2.x(), p2.y());
-    if (!opposite_walks) n2v = -n2v;
-    result.max_normal_angle = std::max(result.max_normal_angle, std::atan2(n1v.cross(n2v).norm(), n1v.dot(n2v)));
+  return {std::move(nets), std::move(rational)};
+}
+
+// The homogeneous points (w P, w) of an edge: the net's row with the rational patch's weights,
+// or weight 1.
+std::vector<Vec4> homogeneous_row(const std::vector<Vec3>& row, const std::optional<RationalBezierPatch>& patch,
+                                  PatchEdge edge) {
+  std::vector<Vec4> result(row.size());
+  const std::vector<Vec4> weighted = patch ? row_from_edge(patch->homogeneous(), edge, 0) : std::vector<Vec4>();
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    const double w = patch ? weighted[i][3] : 1.0;
+    result[i] << w * row[i], w;
   }
-  result.g1 = result.ck >= 0 && result.max_normal_angle <= 1e-7;
   return result;
 }
 
-std::vector<std::vector<Vec3>> continue_across(const BezierPatch3& patch, PatchEdge edge, int k, int degree_across_new) {
-  if (k < 0 || k > degree_across_new) {
-    throw InvalidInput(detail::message("continue_across: order k = ", k, " not in [0, ", degree_across_new, "]"));
+}  // namespace
+
+PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
+    : PatchSet(Kinds(std::move(patches), {}), relative_tolerance) {}
+
+PatchSet::PatchSet(std::span<const AnyBezierPatch> patches, double relative_tolerance)
+    : PatchSet(split_kinds(patches), relative_tolerance) {}
+
+const std::vector<BezierPatch3>& PatchSet::patches() const {
+  if (rational_count_ > 0) {
+    throw InvalidInput(detail::message("PatchSet::patches: ", rational_count_,
+                                       " of the patches are rational; their control points are not the surface"));
   }
-  const int along = degree_along(patch, edge);
-  const int across = degree_across(patch, edge);
-  std::vector<std::vector<Vec3>> rows(static_cast<std::size_t>(k) + 1, std::vector<Vec3>(static_cast<std::size_t>(along) + 1));
-  for (int i = 0; i <= along; ++i) {
-    std::vector<Vec3> column(static_cast<std::size_t>(across) + 1);
-    for (int l = 0; l <= across; ++l) column[static_cast<std::size_t>(across - l)] = row_from_edge(patch, edge, l)[static_cast<std::size_t>(i)];
-    const std::vector<Vec3> next = continue_ck(BezierCurve3(std::move(column)), k, degree_across_new, 1.0);
-    for (int j = 0; j <= k; ++j) rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = next[static_cast<std::size_t>(j)];
-  }
-  return rows;
+  return nets_;
 }
 
-PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance) : patches_(std::move(patches)) {
-  if (patches_.empty()) throw InvalidInput("PatchSet: no patches");
-  if (patches_.size() >= 0xffffffffu) throw InvalidInput(detail::message("PatchSet: ", patches_.size(), " patches (limit 2^32 - 1)"));
+AnyBezierPatch PatchSet::patch(std::uint32_t p) const {
+  if (is_rational(p)) return *rational_[p];
+  return nets_.at(p);
+}
+
+RationalBezierPatch PatchSet::rational_patch(std::uint32_t p) const {
+  if (is_rational(p)) return *rational_[p];
+  return as_rational(nets_.at(p));
+}
+
+PatchSet::PatchSet(Kinds kinds, double relative_tolerance)
+    : nets_(std::move(kinds.first)), rational_(std::move(kinds.second)) {
+  if (nets_.empty()) throw InvalidInput("PatchSet: no patches");
+  if (nets_.size() >= 0xffffffffu) throw InvalidInput(detail::message("PatchSet: ", nets_.size(), " patches (limit 2^32 - 1)"));
   if (!std::isfinite(relative_tolerance) || relative_tolerance < 0.0) {
     throw InvalidInput(detail::message("PatchSet: relative tolerance ", relative_tolerance, " is not >= 0"));
   }
-  Eigen::AlignedBox3d box(patches_.front().control_points().front());
-  for (const auto& patch : patches_) {
+  rational_count_ = static_cast<std::size_t>(
+      std::count_if(rational_.begin(), rational_.end(), [](const auto& r) { return r.has_value(); }));
+  if (rational_count_ == 0) rational_.clear();
+  Eigen::AlignedBox3d box(nets_.front().control_points().front());
+  for (const auto& patch : nets_) {
     for (const auto& p : patch.control_points()) box.extend(p);
   }
   size_ = box.diagonal().norm();
   tolerance_ = relative_tolerance * size_;
 
-  // Every edge: collapsed, or a candidate for sharing.
+  // Every edge: collapsed (a rational edge too: its points are convex combinations of the
+  // control points), or a candidate for sharing.
   std::vector<EdgeRef> edges;
   std::vector<std::vector<Vec3>> points;
-  for (std::uint32_t p = 0; p < patches_.size(); ++p) {
+  for (std::uint32_t p = 0; p < nets_.size(); ++p) {
     for (PatchEdge e : all_edges) {
-      std::vector<Vec3> row = row_from_edge(patches_[p], e, 0);
+      std::vector<Vec3> row = row_from_edge(nets_[p], e, 0);
       const bool collapsed = std::all_of(row.begin(), row.end(), [&](const Vec3& q) { return (q - row.front()).norm() <= tolerance_; });
       if (collapsed) {
         collapsed_.push_back({p, e});
@@ -286,6 +267,18 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
     ends.insert(points[k].front(), k);
     ends.insert(points[k].back(), k);
   }
+  const auto rational_edge = [&](std::size_t k) { return is_rational(edges[k].patch); };
+  // A rational pair: the homogeneous rows at one degree, points within the tolerance and
+  // weights proportional within the relative tolerance.
+  const auto rational_match = [&](std::size_t a, std::size_t b, bool reversed) {
+    std::vector<Vec4> ha = homogeneous_row(points[a], is_rational(edges[a].patch) ? rational_[edges[a].patch] : std::nullopt, edges[a].edge);
+    std::vector<Vec4> hb = homogeneous_row(points[b], is_rational(edges[b].patch) ? rational_[edges[b].patch] : std::nullopt, edges[b].edge);
+    const int degree = static_cast<int>(std::max(ha.size(), hb.size())) - 1;
+    ha = elevate_degree(BezierCurve<4>(ha), degree - static_cast<int>(ha.size()) + 1).control_points();
+    hb = elevate_degree(BezierCurve<4>(hb), degree - static_cast<int>(hb.size()) + 1).control_points();
+    const detail::EdgeAgreement agreement = detail::edge_agreement(ha, hb, reversed);
+    return agreement.points <= tolerance_ && agreement.weights <= relative_tolerance;
+  };
   std::vector<bool> matched(edges.size(), false);
   for (std::size_t a = 0; a < edges.size(); ++a) {
     std::vector<std::size_t> candidates;
@@ -295,19 +288,21 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     for (std::size_t b : candidates) {
+      const bool rational_pair = rational_edge(a) || rational_edge(b);
       std::vector<Vec3> pa = points[a];
       std::vector<Vec3> pb = points[b];
-      if (pa.size() != pb.size()) {
+      if (pa.size() != pb.size() && !rational_pair) {
         const int degree = static_cast<int>(std::max(pa.size(), pb.size())) - 1;
         pa = elevate_degree(BezierCurve3(pa), degree - static_cast<int>(pa.size()) + 1).control_points();
         pb = elevate_degree(BezierCurve3(pb), degree - static_cast<int>(pb.size()) + 1).control_points();
       }
       for (bool reversed : {false, true}) {
-        if (max_distance(pa, pb, reversed) > tolerance_) continue;
+        if (rational_pair ? !rational_match(a, b, reversed) : max_distance(pa, pb, reversed) > tolerance_) continue;
         const EdgeRef ea = edges[a];
         const EdgeRef eb = edges[b];
         SharedEdge shared{ea, eb, reversed, walks_forward(ea.edge) != (walks_forward(eb.edge) != reversed),
-                          edge_continuity(patches_[ea.patch], ea.edge, patches_[eb.patch], eb.edge, reversed)};
+                          rational_pair ? edge_continuity(patch(ea.patch), ea.edge, patch(eb.patch), eb.edge, reversed)
+                                        : edge_continuity(nets_[ea.patch], ea.edge, nets_[eb.patch], eb.edge, reversed)};
         shared_.push_back(shared);
         matched[a] = matched[b] = true;
         break;
@@ -316,9 +311,12 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
   }
   // T-junctions among the edges left: each long edge tiled by parts (longest first, so that a
   // part is never taken for a long edge itself).
+  // Rational edges are left out (tile_edge compares polynomial pieces).
   std::vector<std::size_t> unmatched;
+  std::vector<bool> excluded = matched;
   for (std::size_t k = 0; k < edges.size(); ++k) {
-    if (!matched[k]) unmatched.push_back(k);
+    if (rational_edge(k)) excluded[k] = true;
+    if (!excluded[k]) unmatched.push_back(k);
   }
   if (unmatched.size() >= 3) {
     std::vector<double> chord(edges.size(), 0.0);
@@ -327,11 +325,14 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
     std::unordered_map<std::uint64_t, std::size_t> index_of;
     for (std::size_t k = 0; k < edges.size(); ++k) index_of[(std::uint64_t{edges[k].patch} << 2) | static_cast<std::uint64_t>(edges[k].edge)] = k;
     for (std::size_t a : unmatched) {
-      if (matched[a]) continue;
-      std::optional<TJunction> tiling = tile_edge(a, edges, points, matched, ends, tolerance_);
+      if (excluded[a]) continue;
+      std::optional<TJunction> tiling = tile_edge(a, edges, points, excluded, ends, tolerance_);
       if (!tiling) continue;
-      matched[a] = true;
-      for (const EdgeRef& part : tiling->parts) matched[index_of.at((std::uint64_t{part.patch} << 2) | static_cast<std::uint64_t>(part.edge))] = true;
+      matched[a] = excluded[a] = true;
+      for (const EdgeRef& part : tiling->parts) {
+        const std::size_t k = index_of.at((std::uint64_t{part.patch} << 2) | static_cast<std::uint64_t>(part.edge));
+        matched[k] = excluded[k] = true;
+      }
       t_junctions_.push_back(std::move(*tiling));
     }
   }
@@ -350,7 +351,7 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
     const int k = static_cast<int>(e.edge);
     return static_cast<std::uint32_t>(4 * e.patch + (at_start ? edge_start[k] : edge_end[k]));
   };
-  UnionFind welded(static_cast<std::uint32_t>(4 * patches_.size()));
+  UnionFind welded(static_cast<std::uint32_t>(4 * nets_.size()));
   for (const SharedEdge& s : shared_) {
     welded.unite(corner(s.first, true), corner(s.second, !s.reversed));
     welded.unite(corner(s.first, false), corner(s.second, s.reversed));
@@ -406,8 +407,8 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
     std::uint32_t patch;
   };
   std::vector<Corner> corners;
-  for (std::uint32_t p = 0; p < patches_.size(); ++p) {
-    const auto& patch = patches_[p];
+  for (std::uint32_t p = 0; p < nets_.size(); ++p) {
+    const auto& patch = nets_[p];
     const int n = patch.degree_u();
     const int m = patch.degree_v();
     for (const Vec3& q : {patch.control_point(0, 0), patch.control_point(n, 0), patch.control_point(n, m), patch.control_point(0, m)}) {
@@ -418,9 +419,9 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
   for (std::size_t k = 0; k < corners.size(); ++k) corner_grid.insert(corners[k].point, k);
   // The shared edges (by their first patch) and T-junctions of each patch: a point looks only at
   // those of the patches there.
-  std::vector<std::vector<std::uint32_t>> shared_of(patches_.size());
+  std::vector<std::vector<std::uint32_t>> shared_of(nets_.size());
   for (std::uint32_t i = 0; i < shared_.size(); ++i) shared_of[shared_[i].first.patch].push_back(i);
-  std::vector<std::vector<std::uint32_t>> junctions_of(patches_.size());
+  std::vector<std::vector<std::uint32_t>> junctions_of(nets_.size());
   for (std::uint32_t i = 0; i < t_junctions_.size(); ++i) {
     junctions_of[t_junctions_[i].edge.patch].push_back(i);
     for (const EdgeRef& part : t_junctions_[i].parts) junctions_of[part.patch].push_back(i);
@@ -439,7 +440,7 @@ PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
     here.erase(std::unique(here.begin(), here.end()), here.end());
     if (here.size() < 2) continue;
     const auto touches = [&](EdgeRef e) {
-      const auto row = row_from_edge(patches_[e.patch], e.edge, 0);
+      const auto row = row_from_edge(nets_[e.patch], e.edge, 0);
       return (row.front() - corners[k].point).norm() <= tolerance_ || (row.back() - corners[k].point).norm() <= tolerance_;
     };
     const auto index_of = [&](std::uint32_t patch) {
@@ -489,7 +490,7 @@ std::optional<EdgeRef> PatchSet::neighbour(EdgeRef edge) const {
 }
 
 std::vector<Shell> shells(const PatchSet& set) {
-  const auto count = static_cast<std::uint32_t>(set.patches().size());
+  const auto count = static_cast<std::uint32_t>(set.count());
   UnionFind joined(count);
   for (const SharedEdge& s : set.shared_edges()) joined.unite(s.first.patch, s.second.patch);
   for (const TJunction& t : set.t_junctions()) {
@@ -517,7 +518,7 @@ std::vector<Shell> shells(const PatchSet& set) {
 }
 
 PatchSetReport report(const PatchSet& set) {
-  PatchSetReport r{set.patches().size(), set.shared_edges().size(), set.open_edges().size(),
+  PatchSetReport r{set.count(), set.rational_count(), set.shared_edges().size(), set.open_edges().size(),
                    set.collapsed_edges().size(), set.boundary_loops().size(), set.touching_points().size(),
                    set.t_junctions().size(), true, set.open_edges().empty(),
                    set.shared_edges().empty() ? -1 : 1 << 30, 0, set.tolerance(), &set};
@@ -537,7 +538,9 @@ std::string edge_label(EdgeRef e) { return detail::message("patch ", e.patch, " 
 }  // namespace
 
 std::ostream& operator<<(std::ostream& out, const PatchSetReport& r) {
-  out << "patch set: " << r.patches << " patches, " << r.shared_edges << " shared edges, " << r.open_edges
+  out << "patch set: " << r.patches << " patches";
+  if (r.rational_patches > 0) out << " (" << r.rational_patches << " rational)";
+  out << ", " << r.shared_edges << " shared edges, " << r.open_edges
       << " open edges, " << r.collapsed_edges << " collapsed edges, " << r.boundary_loops << " boundary loops, "
       << r.touching_points << " touching points, " << r.t_junctions << " T-junctions\n"
       << "  closed: " << (r.closed ? "yes" : "no") << ", consistently oriented: " << (r.consistently_oriented ? "yes" : "no")
@@ -609,6 +612,7 @@ std::string to_json(const PatchSetReport& r) {
     touching.push_back({{"point", {t.point.x(), t.point.y(), t.point.z()}}, {"groups", t.groups}});
   }
   const json document = {{"patches", r.patches},
+                         {"rational_patches", r.rational_patches},
                          {"shared_edges", r.shared_edges},
                          {"open_edges", r.open_edges},
                          {"collapsed_edges", r.collapsed_edges},

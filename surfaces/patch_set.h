@@ -20,10 +20,14 @@
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "surfaces/bezier_patch.h"
+#include "surfaces/edge_continuity.h"
+#include "surfaces/rational_bezier_patch.h"
 
 namespace patchwork {
 
@@ -32,20 +36,6 @@ struct EdgeRef {
   std::uint32_t patch;
   PatchEdge edge;
   friend bool operator==(const EdgeRef&, const EdgeRef&) = default;
-};
-
-/// How two patches join along a shared edge.
-struct EdgeContinuity {
-  /// Largest distance between corresponding control points of the two boundary curves.
-  double gap;
-  /// The highest k <= the degrees across the edge for which the join is C^k (cross-boundary
-  /// derivatives of orders 0..k agree, each patch in its own parameters on [0,1]^2); -1 if the
-  /// control points of the edge differ by more than the tolerance.
-  int ck;
-  /// The normals agree along the edge (to 1e-7 rad) at 4 max(n, m) + 1 sample points.
-  bool g1;
-  /// The largest angle between the two unit normals at the samples, radians.
-  double max_normal_angle;
 };
 
 /// Two patch edges with the same control points.
@@ -99,9 +89,33 @@ class PatchSet {
   /// \throws InvalidInput if there is no patch, more than 2^32 - 1, or the tolerance is
   ///         negative or not finite.
   explicit PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance = 1e-9);
+  /// Polynomial and rational patches together. A rational patch whose weights are all equal is
+  /// the polynomial patch of its control points and is kept as one. Edges of rational patches
+  /// are shared when their control points agree within the tolerance and their weights are
+  /// proportional within relative_tolerance (edge_continuity.h bounds the gap that leaves);
+  /// they take no part in T-junctions (a rational edge is shared whole, or open).
+  /// \throws InvalidInput as the polynomial constructor does.
+  explicit PatchSet(std::span<const AnyBezierPatch> patches, double relative_tolerance = 1e-9);
 
-  /// The patches, in the order given.
-  const std::vector<BezierPatch3>& patches() const noexcept { return patches_; }
+  /// The patches, in the order given, when none is rational.
+  /// \throws InvalidInput if some patch is rational (its control points alone are not the
+  ///         surface: see control_nets, patch and rational_patch).
+  const std::vector<BezierPatch3>& patches() const;
+  /// The control points P_ij of every patch, in the order given: the patch itself where it is
+  /// polynomial; a rational patch lies in their convex hull (its weights are positive).
+  const std::vector<BezierPatch3>& control_nets() const noexcept { return nets_; }
+  /// The number of patches.
+  std::size_t count() const noexcept { return nets_.size(); }
+  /// The number of rational patches (those with weights that are not all equal).
+  std::size_t rational_count() const noexcept { return rational_count_; }
+  /// Patch p is rational.
+  bool is_rational(std::uint32_t p) const noexcept { return !rational_.empty() && rational_[p].has_value(); }
+  /// Patch p's rational form where it is rational, else null.
+  const RationalBezierPatch* rational(std::uint32_t p) const noexcept { return is_rational(p) ? &*rational_[p] : nullptr; }
+  /// Patch p, of its kind.
+  AnyBezierPatch patch(std::uint32_t p) const;
+  /// Patch p as a rational patch (every weight 1 where it is polynomial).
+  RationalBezierPatch rational_patch(std::uint32_t p) const;
   /// The absolute tolerance used for comparisons.
   double tolerance() const noexcept { return tolerance_; }
   /// Diagonal of the box of all control points.
@@ -123,8 +137,16 @@ class PatchSet {
   /// The edge shared with `edge`, if any.
   std::optional<EdgeRef> neighbour(EdgeRef edge) const;
 
+ /// The nets, and per patch the rational patch where it is one (internal).
+  using Kinds = std::pair<std::vector<BezierPatch3>, std::vector<std::optional<RationalBezierPatch>>>;
+
  private:
-  std::vector<BezierPatch3> patches_;
+  PatchSet(Kinds kinds, double relative_tolerance);
+
+  std::vector<BezierPatch3> nets_;
+  // Per patch, the rational patch where it is one (empty: none is).
+  std::vector<std::optional<RationalBezierPatch>> rational_;
+  std::size_t rational_count_ = 0;
   double size_;
   double tolerance_;
   std::vector<SharedEdge> shared_;
@@ -135,22 +157,11 @@ class PatchSet {
   std::vector<TouchingPoint> touching_;
 };
 
-/// The first k+1 rows R_0 (the edge itself) .. R_k of a neighbour patch of degree
-/// `degree_across` across `edge` that joins `patch` with C^k there. The neighbour is
-/// parametrised with u along boundary_curve(patch, edge) and v leaving `patch`, its rows
-/// indexed by v (row j = its control points P_0j .. P_nj): rows k+1 .. degree_across are free.
-/// Each column is continued with the curve rule of Bemerkung 18 (continue_ck).
-/// \throws InvalidInput if k < 0 or k > degree_across.
-std::vector<std::vector<Vec3>> continue_across(const BezierPatch3& patch, PatchEdge edge, int k, int degree_across);
-
-/// Continuity of two patches along edges that coincide (first's edge, second's edge, reversed
-/// as in SharedEdge), judged with `relative_tolerance` of the control-point scale.
-EdgeContinuity edge_continuity(const BezierPatch3& first, PatchEdge first_edge, const BezierPatch3& second,
-                               PatchEdge second_edge, bool reversed, double relative_tolerance = 1e-9);
-
 /// Everything a PatchSet knows, in one value that prints as text and as JSON.
 struct PatchSetReport {
   std::size_t patches;
+  /// How many of them are rational.
+  std::size_t rational_patches;
   std::size_t shared_edges;
   std::size_t open_edges;
   std::size_t collapsed_edges;

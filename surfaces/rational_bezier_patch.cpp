@@ -42,6 +42,25 @@ Vec3 RationalBezierPatch::control_point(int i, int j) const {
   return h.head<3>() / h[3];
 }
 
+BezierPatch3 RationalBezierPatch::control_net() const {
+  std::vector<Vec3> points;
+  points.reserve(homogeneous_.control_points().size());
+  for (const Vec4& h : homogeneous_.control_points()) points.push_back(h.head<3>() / h[3]);
+  return BezierPatch3(degree_u(), degree_v(), std::move(points));
+}
+
+std::vector<double> RationalBezierPatch::weights() const {
+  std::vector<double> result;
+  result.reserve(homogeneous_.control_points().size());
+  for (const Vec4& h : homogeneous_.control_points()) result.push_back(h[3]);
+  return result;
+}
+
+RationalBezierPatch as_rational(const BezierPatch3& patch) {
+  return RationalBezierPatch(patch.degree_u(), patch.degree_v(), patch.control_points(),
+                             std::vector<double>(patch.control_points().size(), 1.0));
+}
+
 Vec3 RationalBezierPatch::evaluate(double u, double v) const {
   const Vec4 h = homogeneous_.evaluate(u, v);
   return h.head<3>() / h[3];

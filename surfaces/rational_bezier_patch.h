@@ -8,6 +8,7 @@
 //   d^(a,b) F = (d^(a,b) H - sum_{(k,l) != (0,0)} C(a,k) C(b,l) d^(k,l) w d^(a-k,b-l) F) / w.
 // Quadrics are exact: sphere_octant gives the unit sphere's octant to rounding.
 
+#include <variant>
 #include <vector>
 
 #include "curves/rational_bezier_curve.h"
@@ -31,6 +32,10 @@ class RationalBezierPatch {
   Vec3 control_point(int i, int j) const;
   /// w_ij.
   double weight(int i, int j) const { return homogeneous_.control_point(i, j)[3]; }
+  /// The points P_ij as a polynomial patch (the surface lies in their convex hull).
+  BezierPatch3 control_net() const;
+  /// The weights w_ij, in the order of the control points.
+  std::vector<double> weights() const;
 
   /// F(u, v). \throws InvalidInput if u or v is not finite.
   Vec3 evaluate(double u, double v) const;
@@ -62,6 +67,12 @@ RationalBezierCurve3 iso_curve_u(const RationalBezierPatch& patch, double u);
 RationalBezierCurve3 iso_curve_v(const RationalBezierPatch& patch, double v);
 /// The boundary curve of an edge, in the direction of increasing u (v0, v1) or v (u0, u1).
 RationalBezierCurve3 boundary_curve(const RationalBezierPatch& patch, PatchEdge edge);
+
+/// The polynomial patch as a rational one (every weight 1).
+RationalBezierPatch as_rational(const BezierPatch3& patch);
+
+/// A patch of either kind (a PatchSet holds both).
+using AnyBezierPatch = std::variant<BezierPatch3, RationalBezierPatch>;
 
 /// The unit sphere's octant x, y, z >= 0 (scaled by radius, moved to center) as a degree (2,2)
 /// rational patch: the quarter circle (1,0,0) -> (0,0,1) in the xz-plane, weights (1, 1/sqrt2, 1),

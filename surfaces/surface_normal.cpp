@@ -79,10 +79,17 @@ Vec3 unit_normal(const BezierPatch3& patch, double u, double v) {
   return detail::limit_unit_normal(partial_derivatives(patch, u, v, max_normal_order(n, m) + 1), u, v, scale, n, m);
 }
 
-Vec3 unit_derivative_direction(const BezierPatch3& patch, double u, double v, bool along_u) {
+namespace {
+
+double net_scale(const BezierPatch3& patch) { return net_size(patch.control_points()); }
+double net_scale(const RationalBezierPatch& patch) { return net_size(patch.control_net().control_points()); }
+
+// unit_derivative_direction for either kind of patch (both have partial_derivatives).
+template <class Patch>
+Vec3 derivative_direction(const Patch& patch, double u, double v, bool along_u) {
   const int n = patch.degree_u();
   const int m = patch.degree_v();
-  const double scale = net_size(patch.control_points());
+  const double scale = net_scale(patch);
   const double degree = std::max({n, m, 1});
   const double threshold = 1e-12 * degree * scale;
   const PartialDerivatives<3> F = partial_derivatives(patch, u, v, std::min(n + m, 12) + 1);
@@ -98,27 +105,42 @@ Vec3 unit_derivative_direction(const BezierPatch3& patch, double u, double v, bo
   throw NumericalError(detail::message("unit_derivative_direction: the patch is degenerate around (", u, ", ", v, ")"));
 }
 
-Vec4 unit_tangent(const BezierPatch3& patch, double u, double v, const Vec3& unit_normal) {
-  const Vec3 along_u = unit_derivative_direction(patch, u, v, true);
+template <class Patch>
+Vec4 tangent_of(const Patch& patch, double u, double v, const Vec3& unit_normal) {
+  const Vec3 along_u = derivative_direction(patch, u, v, true);
   Vec3 tangent = along_u - along_u.dot(unit_normal) * unit_normal;
   if (tangent.norm() < 1e-9) {
     // F_u along the normal can only happen at a singular point; any tangent direction serves.
     tangent = unit_normal.unitOrthogonal();
   }
   tangent.normalize();
-  const Vec3 along_v = unit_derivative_direction(patch, u, v, false);
+  const Vec3 along_v = derivative_direction(patch, u, v, false);
   const double w = unit_normal.cross(tangent).dot(along_v) < 0.0 ? -1.0 : 1.0;
   return {tangent.x(), tangent.y(), tangent.z(), w};
+}
+
+}  // namespace
+
+Vec3 unit_derivative_direction(const BezierPatch3& patch, double u, double v, bool along_u) {
+  return derivative_direction(patch, u, v, along_u);
+}
+
+Vec3 unit_derivative_direction(const RationalBezierPatch& patch, double u, double v, bool along_u) {
+  return derivative_direction(patch, u, v, along_u);
+}
+
+Vec4 unit_tangent(const BezierPatch3& patch, double u, double v, const Vec3& unit_normal) {
+  return tangent_of(patch, u, v, unit_normal);
+}
+
+Vec4 unit_tangent(const RationalBezierPatch& patch, double u, double v, const Vec3& unit_normal) {
+  return tangent_of(patch, u, v, unit_normal);
 }
 
 Vec3 unit_normal(const RationalBezierPatch& patch, double u, double v) {
   const int n = patch.degree_u();
   const int m = patch.degree_v();
-  std::vector<Vec3> points;
-  for (int j = 0; j <= m; ++j) {
-    for (int i = 0; i <= n; ++i) points.push_back(patch.control_point(i, j));
-  }
-  const double scale = net_size(points);
+  const double scale = net_scale(patch);
   const Vec3 first = normal(patch, u, v);
   if (first.norm() > 1e-12 * std::max(n * m, 1) * scale * scale) return first.normalized();
   return detail::limit_unit_normal(partial_derivatives(patch, u, v, max_normal_order(n, m) + 1), u, v, scale, n, m);

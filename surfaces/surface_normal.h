@@ -32,10 +32,14 @@ Vec3 unit_normal(const RationalBezierPatch& patch, double u, double v);
 /// collapsed edge), the limit of its direction approaching from inside towards (1/2, 1/2), as
 /// for unit_normal. \throws NumericalError if every derivative along the direction vanishes.
 Vec3 unit_derivative_direction(const BezierPatch3& patch, double u, double v, bool along_u);
+/// unit_derivative_direction of a rational patch.
+Vec3 unit_derivative_direction(const RationalBezierPatch& patch, double u, double v, bool along_u);
 
 /// The unit tangent along increasing u in the tangent plane of `unit_normal`, with w = +1 or -1
 /// the sign of (normal x tangent) . F_v (the glTF TANGENT convention; +1 for a regular patch).
 Vec4 unit_tangent(const BezierPatch3& patch, double u, double v, const Vec3& unit_normal);
+/// unit_tangent of a rational patch.
+Vec4 unit_tangent(const RationalBezierPatch& patch, double u, double v, const Vec3& unit_normal);
 
 namespace detail {
 

@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "surfaces/patch_bounding_box.h"
 #include "surfaces/patch_grid.h"
+#include "surfaces/rational_bounds.h"
 #include "surfaces/surface_integrals.h"
 #include "surfaces/tessellator_stages.h"
 
@@ -19,7 +20,11 @@ std::vector<std::vector<SecondDerivativeBounds>> cell_bounds(const PatchSet& set
     throw InvalidInput("tessellate: every control point is the same point: there is no surface to tessellate");
   }
   std::vector<std::vector<SecondDerivativeBounds>> cells;
-  for (const BezierPatch3& patch : set.patches()) cells.push_back(piece_second_derivative_bounds(patch, bound_pieces));
+  for (std::uint32_t p = 0; p < set.count(); ++p) {
+    const RationalBezierPatch* rational = set.rational(p);
+    cells.push_back(rational != nullptr ? piece_second_derivative_bounds(*rational, bound_pieces)
+                                        : piece_second_derivative_bounds(set.control_nets()[p], bound_pieces));
+  }
   return cells;
 }
 
@@ -39,7 +44,16 @@ SecondDerivativeBounds split_bounds(const std::vector<SecondDerivativeBounds>& c
 
 double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {
   if (!tight_diagonal) return set.size();
-  return bounding_box(std::span<const BezierPatch3>(set.patches()), 1e-6 * set.size()).diagonal().norm();
+  const double tolerance = 1e-6 * set.size();
+  if (set.rational_count() == 0) {
+    return bounding_box(std::span<const BezierPatch3>(set.patches()), tolerance).diagonal().norm();
+  }
+  Eigen::AlignedBox3d box;
+  for (std::uint32_t p = 0; p < set.count(); ++p) {
+    const RationalBezierPatch* rational = set.rational(p);
+    box.extend(rational != nullptr ? bounding_box(*rational, tolerance) : bounding_box(set.control_nets()[p], tolerance));
+  }
+  return box.diagonal().norm();
 }
 
 // Per patch, the largest gap of its joined edges (SurfacePieces::gaps): the control-point gap of
@@ -47,7 +61,7 @@ double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {
 // curves being convex combinations of their control points) and the spread of its collapsed
 // edges' control points around the point they weld to.
 std::vector<double> edge_gaps(const PatchSet& set) {
-  std::vector<double> gaps(set.patches().size(), 0.0);
+  std::vector<double> gaps(set.count(), 0.0);
   const auto widen = [&](std::uint32_t p, double gap) { gaps[p] = std::max(gaps[p], gap); };
   for (const SharedEdge& s : set.shared_edges()) {
     widen(s.first.patch, s.continuity.gap);
@@ -58,7 +72,7 @@ std::vector<double> edge_gaps(const PatchSet& set) {
     for (const EdgeRef& part : t.parts) widen(part.patch, t.gap);
   }
   for (const EdgeRef& e : set.collapsed_edges()) {
-    const std::vector<Vec3> row = row_from_edge(set.patches()[e.patch], e.edge, 0);
+    const std::vector<Vec3> row = row_from_edge(set.control_nets()[e.patch], e.edge, 0);
     for (const Vec3& q : row) widen(e.patch, (q - row.front()).norm());
   }
   return gaps;
@@ -66,12 +80,17 @@ std::vector<double> edge_gaps(const PatchSet& set) {
 
 // Per patch, the solid it bounds, or -1 (SurfacePieces::solids).
 std::vector<std::int32_t> solids_of(const PatchSet& set) {
-  std::vector<std::int32_t> solids(set.patches().size(), -1);
+  std::vector<std::int32_t> solids(set.count(), -1);
   std::int32_t next = 0;
   for (const Shell& shell : shells(set)) {
     if (!shell.closed || !shell.consistently_oriented) continue;
     double volume = 0.0;
-    for (std::uint32_t p : shell.patches) volume += volume_contribution(set.patches()[p]);
+    for (std::uint32_t p : shell.patches) {
+      // A rational patch's share by quadrature, to far below the volume's size (only its sign
+      // is used).
+      const RationalBezierPatch* rational = set.rational(p);
+      volume += rational != nullptr ? volume_contribution(*rational).value : volume_contribution(set.control_nets()[p]);
+    }
     if (!(volume > 0.0)) continue;
     for (std::uint32_t p : shell.patches) solids[p] = next;
     ++next;
@@ -82,12 +101,29 @@ std::vector<std::int32_t> solids_of(const PatchSet& set) {
 // Pieces of `set`, each patch split k x k (k = 1: the patches themselves).
 SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k,
                         double diagonal, bool with_solids) {
-  const std::vector<BezierPatch3>& patches = set.patches();
+  const std::vector<BezierPatch3>& patches = set.control_nets();
   SurfacePieces pieces;
   pieces.diagonal = diagonal;
+  // Piece p of patch `patch` on the grid us x vs (in the patch's parameters), of its kind.
+  const auto grid_of = [&set](std::uint32_t patch, std::span<const double> us, std::span<const double> vs,
+                              GridSamplesView out) {
+    if (const RationalBezierPatch* rational = set.rational(patch)) {
+      evaluate_grid(*rational, PatchGridWeights(rational->degree_u(), rational->degree_v(), us, vs), out);
+      return;
+    }
+    const BezierPatch3& net = set.control_nets()[patch];
+    evaluate_grid(net, PatchGridWeights(net.degree_u(), net.degree_v(), us, vs), out);
+  };
+  const auto point_of = [&set](std::uint32_t patch, double u, double v) {
+    const RationalBezierPatch* rational = set.rational(patch);
+    return rational != nullptr ? rational->evaluate(u, v) : set.control_nets()[patch].evaluate(u, v);
+  };
   if (k == 1) {
     pieces.count = patches.size();
     pieces.patches = &patches;
+    if (set.rational_count() > 0) {
+      for (std::uint32_t p = 0; p < patches.size(); ++p) pieces.rational.push_back(set.is_rational(p));
+    }
     for (const SharedEdge& shared : set.shared_edges())
       pieces.shared.push_back({shared.first, shared.second, shared.reversed});
     pieces.collapsed = set.collapsed_edges();
@@ -95,12 +131,8 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     pieces.gaps = edge_gaps(set);
     if (with_solids) pieces.solids = solids_of(set);
     for (std::size_t p = 0; p < patches.size(); ++p) pieces.bounds.push_back(split_bounds(cells[p], 1, 0, 0));
-    pieces.evaluate_grid = [&patches](std::uint32_t p, std::span<const double> us, std::span<const double> vs,
-                                      GridSamplesView out) {
-      const BezierPatch3& patch = patches[p];
-      evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), us, vs), out);
-    };
-    pieces.evaluate = [&patches](std::uint32_t p, double u, double v) { return patches[p].evaluate(u, v); };
+    pieces.evaluate_grid = grid_of;
+    pieces.evaluate = point_of;
     return pieces;
   }
   // Piece (a, b) of patch p is number p k^2 + a + k b.
@@ -150,19 +182,18 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     for (int i = 0; i < k; ++i) pieces.collapsed.push_back(along(collapsed, i));
   }
   const std::vector<SurfacePieces::Domain>& domains = pieces.domains;
-  pieces.evaluate_grid = [&patches, domains](std::uint32_t q, std::span<const double> us, std::span<const double> vs,
-                                             GridSamplesView out) {
+  pieces.evaluate_grid = [grid_of, domains](std::uint32_t q, std::span<const double> us, std::span<const double> vs,
+                                            GridSamplesView out) {
     const SurfacePieces::Domain& d = domains[q];
     std::vector<double> patch_us(us.begin(), us.end());
     std::vector<double> patch_vs(vs.begin(), vs.end());
     for (double& u : patch_us) u = d.u0 + d.size * u;
     for (double& v : patch_vs) v = d.v0 + d.size * v;
-    const BezierPatch3& patch = patches[d.patch];
-    evaluate_grid(patch, PatchGridWeights(patch.degree_u(), patch.degree_v(), patch_us, patch_vs), out);
+    grid_of(d.patch, patch_us, patch_vs, out);
   };
-  pieces.evaluate = [&patches, domains](std::uint32_t q, double u, double v) {
+  pieces.evaluate = [point_of, domains](std::uint32_t q, double u, double v) {
     const SurfacePieces::Domain& d = domains[q];
-    return patches[d.patch].evaluate(d.u0 + d.size * u, d.v0 + d.size * v);
+    return point_of(d.patch, d.u0 + d.size * u, d.v0 + d.size * v);
   };
   return pieces;
 }

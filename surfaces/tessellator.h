@@ -201,8 +201,13 @@ struct SurfacePieces {
       evaluate_grid;
   /// One point of piece p.
   std::function<Vec3(std::uint32_t p, double u, double v)> evaluate;
-  /// The pieces as Bezier patches, when they are (the camera mode needs them; else null).
+  /// The pieces' control nets, when the pieces are whole Bezier patches (the camera mode needs
+  /// them; else null): each piece lies in the convex hull of its net; where `rational` says
+  /// so, the piece is the rational patch of that net and its weights, else the net itself.
   const std::vector<BezierPatch3>* patches = nullptr;
+  /// Per piece, whether it is rational (empty: none is). The camera mode does not cull rational
+  /// pieces as back-facing (view_culling.h decides that for polynomial patches).
+  std::vector<bool> rational;
   /// Per piece, the solid it bounds, or -1 (empty: none does). A solid is a shell (shells() of
   /// a PatchSet) that is closed, consistently oriented and of positive enclosed volume, so that
   /// F_u x F_v points out of it. Seen from outside the shell, a ray leaves the solid only after

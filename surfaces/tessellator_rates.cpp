@@ -88,7 +88,8 @@ void Tessellator::plan_patches() {
       const Camera& camera = *options_.camera;
       const BezierPatch3& patch = (*pieces_.patches)[p];
       plan.tolerance = options_.pixel_tolerance * std::max(nearest_depth(patch, camera), near_depth) / focal;
-      plan.culled = outside_frustum(patch, camera) || (back_faces_hidden[p] && back_facing(patch, camera.eye));
+      const bool rational = !pieces_.rational.empty() && pieces_.rational[p];
+      plan.culled = outside_frustum(patch, camera) || (back_faces_hidden[p] && !rational && back_facing(patch, camera.eye));
     }
     // The weld gap of the piece's edges comes on top of its pattern's bound (assemble): plan
     // for the rest, down to half the tolerance (a gap beyond that shows in error_bound).

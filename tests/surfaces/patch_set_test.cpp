@@ -209,7 +209,8 @@ TEST(PatchSet, ToleranceDecidesNearMisses) {
   const PatchSet apart({patches[0], BezierPatch3(1, 1, moved)});
   EXPECT_TRUE(apart.shared_edges().empty());
   EXPECT_EQ(apart.open_edges().size(), 8u);
-  EXPECT_THROW(PatchSet({}), InvalidInput);
+  EXPECT_THROW(PatchSet(std::vector<BezierPatch3>{}), InvalidInput);
+  EXPECT_THROW(PatchSet(std::vector<AnyBezierPatch>{}), InvalidInput);
   EXPECT_THROW(PatchSet(patches, -1.0), InvalidInput);
 }
 
