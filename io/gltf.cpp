@@ -5,6 +5,10 @@
 // TINYGLTF_IMPLEMENTATION or any TINYGLTF_NO_* macro, so our view of its classes is the library's.
 #include <tiny_gltf.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -14,6 +18,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -157,7 +162,7 @@ double add_attributes(GltfBuilder& builder, tinygltf::Primitive& primitive, cons
       values.push_back(f);
       error[c] = offset_rounding(f, d, origin[c]);
     }
-    rounding = std::max(rounding, error.norm() * (1 + 0x1p-50));
+    rounding = std::max(rounding, error.stableNorm() * (1 + 0x1p-50));  // no underflow of tiny errors
   }
   const int position = builder.add(values, 3, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
   // min/max of the stored floats, as the validator compares them.
@@ -238,25 +243,25 @@ struct Confinement {
 
 std::string unexpanded(const std::string& path, void*) { return path; }  // no "~" or "$VAR"
 
-// Whether `path` is a regular file inside the folder; records why not when a URI names a file
-// elsewhere.
-bool confined(const std::string& path, Confinement& confinement) {
+// The canonical path of `path` when it is a regular file inside the folder, else nothing;
+// records why not when a URI names a file elsewhere.
+std::optional<std::filesystem::path> confined(const std::string& path, Confinement& confinement) {
   namespace fs = std::filesystem;
   if (confinement.root.empty()) {  // the folder has no absolute path (no working directory)
     if (confinement.refused.empty()) confinement.refused = "the folder of the glTF file has no absolute path";
-    return false;
+    return std::nullopt;
   }
-  if (!path.starts_with(confinement.prefix)) return false;  // tinygltf's second try, relative to "."
+  if (!path.starts_with(confinement.prefix)) return std::nullopt;  // tinygltf's second try, relative to "."
   const std::string uri = path.substr(confinement.prefix.size());
-  const auto refuse = [&](const std::string& why) {
+  const auto refuse = [&](const std::string& why) -> std::optional<fs::path> {
     if (confinement.refused.empty()) {
       confinement.refused =
           detail::message("the file '", uri, "' named by a buffer or image URI (percent-decoded) ", why,
                           ": only data: URIs and files inside the folder of the glTF file are read");
     }
-    return false;
+    return std::nullopt;
   };
-  if (uri.empty()) return false;
+  if (uri.empty()) return std::nullopt;
   const fs::path relative(uri);
   if (relative.is_absolute()) return refuse("is an absolute path");
   for (const fs::path& part : relative) {
@@ -264,32 +269,56 @@ bool confined(const std::string& path, Confinement& confinement) {
   }
   std::error_code error;
   const fs::path resolved = fs::weakly_canonical(fs::path(path), error);
-  if (error) return false;
+  if (error) return std::nullopt;
   const auto [in_root, in_resolved] =
       std::mismatch(confinement.root.begin(), confinement.root.end(), resolved.begin(), resolved.end());
   if (in_root != confinement.root.end()) {
     return refuse("leads out of the folder through a symbolic link, to " + resolved.string());
   }
-  return fs::is_regular_file(resolved, error);
+  if (!fs::is_regular_file(resolved, error)) return std::nullopt;
+  return resolved;
 }
 
 bool confined_exists(const std::string& path, void* confinement) {
-  return confined(path, *static_cast<Confinement*>(confinement));
+  return confined(path, *static_cast<Confinement*>(confinement)).has_value();
 }
 
+// Reads the canonical path that confined() checked, not the path as joined: the file opened is
+// the one judged (a symbolic link put in its place afterwards is not followed, O_NOFOLLOW), and
+// its size is checked on the open file before anything is read (a buffer is at most 4 GiB).
 bool confined_read(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* confinement) {
-  if (!confined(path, *static_cast<Confinement*>(confinement))) {
+  const std::optional<std::filesystem::path> resolved = confined(path, *static_cast<Confinement*>(confinement));
+  if (!resolved) {
     *error = "not a file inside the folder of the glTF file";
     return false;
   }
-  try {
-    const std::string bytes = read_file(path);
-    out->assign(bytes.begin(), bytes.end());
-    return true;
-  } catch (const IoError& e) {
-    *error = e.what();
+  const int fd = ::open(resolved->c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) {
+    *error = detail::message(resolved->string(), ": cannot open: ", std::strerror(errno));
     return false;
   }
+  struct stat status {};
+  bool ok = ::fstat(fd, &status) == 0 && S_ISREG(status.st_mode);
+  if (!ok) *error = detail::message(resolved->string(), ": not a regular file");
+  if (ok && static_cast<std::uint64_t>(status.st_size) > std::numeric_limits<unsigned int>::max()) {
+    *error = detail::message(resolved->string(), ": ", status.st_size, " bytes, larger than a buffer can be (4 GiB)");
+    ok = false;
+  }
+  if (ok) {
+    out->resize(static_cast<std::size_t>(status.st_size));
+    std::size_t done = 0;
+    while (ok && done < out->size()) {
+      const ssize_t got = ::read(fd, out->data() + done, out->size() - done);
+      if (got <= 0) {
+        *error = detail::message(resolved->string(), ": read failed", got < 0 ? std::string(": ") + std::strerror(errno) : "");
+        ok = false;
+      } else {
+        done += static_cast<std::size_t>(got);
+      }
+    }
+  }
+  ::close(fd);
+  return ok;
 }
 
 bool refuse_write(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
@@ -305,6 +334,8 @@ enum class Components {
 class AccessorReader {
  public:
   AccessorReader(const tinygltf::Model& model, std::string name) : model_(model), name_(std::move(name)) {}
+
+  const tinygltf::Model& model() const { return model_; }
 
   [[noreturn]] void fail(const std::string& message) const { throw ParseError(name_, 0, 0, message); }
 
@@ -486,12 +517,24 @@ Affine local_transform(const tinygltf::Model& model, std::size_t k, const Access
   return transform;
 }
 
+// One placement of the mesh: the node holding it (none: the mesh as it is) and its world transform.
+struct MeshInstance {
+  std::size_t node;
+  Affine world;
+};
+constexpr std::size_t no_node = static_cast<std::size_t>(-1);
+
 // The world transform of every node holding mesh 0, in the order a depth-first walk of the
 // scene meets them: the roots of the default scene (scene 0 if none is named), or, without
-// scenes, every node that is no node's child. Without nodes, the mesh once as it is.
-std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorReader& reader) {
+// scenes, every node that is no node's child. Without nodes, the mesh once as it is. A skinned
+// node is refused (its joints move the vertices, which is not read).
+std::vector<MeshInstance> mesh_instances(const tinygltf::Model& model, const AccessorReader& reader) {
   const std::size_t count = model.nodes.size();
-  if (count == 0) return {Affine::Identity()};
+  if (model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) >= model.scenes.size()) {
+    reader.fail(detail::message("the default scene ", model.defaultScene, " does not exist (the file has ",
+                                model.scenes.size(), " scenes)"));
+  }
+  if (count == 0) return {{no_node, Affine::Identity()}};
   constexpr std::size_t none = static_cast<std::size_t>(-1);
   std::vector<std::size_t> parent(count, none);
   for (std::size_t k = 0; k < count; ++k) {
@@ -522,10 +565,7 @@ std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorR
   }
   std::vector<std::size_t> roots;
   if (!model.scenes.empty()) {
-    const std::size_t scene =
-        model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) < model.scenes.size()
-            ? static_cast<std::size_t>(model.defaultScene)
-            : 0;
+    const std::size_t scene = model.defaultScene >= 0 ? static_cast<std::size_t>(model.defaultScene) : 0;
     std::vector<bool> listed(count, false);
     for (const int root : model.scenes[scene].nodes) {
       if (root < 0 || static_cast<std::size_t>(root) >= count) {
@@ -545,7 +585,7 @@ std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorR
       if (parent[k] == none) roots.push_back(k);
     }
   }
-  std::vector<Affine> instances;
+  std::vector<MeshInstance> instances;
   std::vector<std::pair<std::size_t, Affine>> stack;
   for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.emplace_back(*root, Affine::Identity());
   while (!stack.empty()) {
@@ -561,7 +601,11 @@ std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorR
     if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) >= model.meshes.size()) {
       reader.fail(detail::message(node_name(model, k), ": mesh ", node.mesh, " does not exist"));
     }
-    if (node.mesh == 0) instances.push_back(world);
+    if (node.mesh == 0 && node.skin >= 0) {
+      reader.fail(detail::message(node_name(model, k), " is skinned (skin ", node.skin,
+                                  "): parse_gltf reads static meshes, not joints"));
+    }
+    if (node.mesh == 0) instances.push_back({k, world});
     for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
       stack.emplace_back(static_cast<std::size_t>(*child), world);
     }
@@ -575,15 +619,30 @@ std::vector<Affine> mesh_instances(const tinygltf::Model& model, const AccessorR
 // by the linear part, both renormalised (unless the linear part is the identity); where the
 // determinant is negative (a mirror) every triangle's last two corners swap, keeping the
 // winding, and tangent w flips (the bitangent n x t w is mirrored too).
-RenderMesh instanced(const RenderMesh& local, const std::vector<Affine>& instances, bool z_up,
+RenderMesh instanced(const RenderMesh& local, const std::vector<MeshInstance>& instances, bool z_up,
                      const AccessorReader& reader) {
   const std::size_t n = local.vertex_count();
   if (n * instances.size() > detail::max_mesh_vertices) {
     reader.fail(detail::message(instances.size(), " instances of ", n, " vertices exceed 32-bit ids"));
   }
+  // A small file can place a large mesh many times: the expanded mesh is refused beyond
+  // gltf_max_expanded_bytes, before any of it is made.
+  const std::uint64_t vertex_bytes = sizeof(Vec3) + (local.normals.empty() ? 0 : sizeof(Vec3)) +
+                                     (local.uvs.empty() ? 0 : sizeof(Vec2)) + (local.tangents.empty() ? 0 : sizeof(Vec4)) +
+                                     2 * sizeof(std::uint32_t);  // position ids, and their welding
+  const std::uint64_t bytes = instances.size() * (n * vertex_bytes + local.indices.size() * sizeof(std::uint32_t));
+  if (bytes > gltf_max_expanded_bytes) {
+    reader.fail(detail::message(instances.size(), " instances of a mesh of ", n, " vertices and ",
+                                local.indices.size() / 3, " triangles would take ", bytes >> 20, " MiB (the limit is ",
+                                gltf_max_expanded_bytes >> 20, " MiB)"));
+  }
   RenderMesh mesh;
+  mesh.positions.reserve(n * instances.size());
+  mesh.indices.reserve(local.indices.size() * instances.size());
   for (std::size_t i = 0; i < instances.size(); ++i) {
-    const Affine& transform = instances[i];
+    const Affine& transform = instances[i].world;
+    const std::string placed =
+        instances[i].node == no_node ? std::string() : " after the transform of " + node_name(reader.model(), instances[i].node);
     const Eigen::Matrix3d normal_map = transform.linear().inverse().transpose();
     const bool mirror = transform.linear().determinant() < 0;
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
@@ -592,15 +651,13 @@ RenderMesh instanced(const RenderMesh& local, const std::vector<Affine>& instanc
     const auto direction = [&](const Vec3& d, const char* what, std::size_t v) {
       const Vec3 mapped = moves_directions ? d.normalized() : d;
       if (!mapped.allFinite() || mapped == Vec3::Zero()) {
-        reader.fail(detail::message(what, " of vertex ", v, " is degenerate after its node's transform"));
+        reader.fail(detail::message(what, " of vertex ", v, " is degenerate", placed));
       }
       return from_gltf_axes(mapped, z_up);
     };
     for (std::size_t v = 0; v < n; ++v) {
       const Vec3 p = transform * local.positions[v];
-      if (!p.allFinite()) {
-        reader.fail(detail::message("POSITION of vertex ", v, " is not finite after its node's transform"));
-      }
+      if (!p.allFinite()) reader.fail(detail::message("POSITION of vertex ", v, " is not finite", placed));
       mesh.positions.push_back(from_gltf_axes(p, z_up));
     }
     for (std::size_t v = 0; v < local.normals.size(); ++v) {
@@ -800,6 +857,7 @@ RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path,
     return found == primitive.attributes.end() ? -1 : found->second;
   };
   if (attribute("POSITION") < 0) reader.fail("the primitive has no POSITION");
+  if (!primitive.targets.empty()) reader.fail("the primitive has morph targets, which parse_gltf does not read");
 
   // The primitive as stored, in glTF's axes; placed by the scene's nodes at the end.
   RenderMesh mesh;

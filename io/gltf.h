@@ -41,6 +41,7 @@
 // Reading a file written here therefore gives every value rounded to float and back, exactly,
 // the positions as fl(float(fl(p - t)) + t).
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <span>
@@ -94,7 +95,9 @@ struct GltfEncoding {
   /// Per level (one for a single mesh): a bound, rigorous under round-to-nearest, on the largest
   /// distance between a vertex's position p and where the file puts it, both the exact f + t of
   /// its float offset f and node translation t and the double fl(f + t) parse_gltf returns. A
-  /// mesh whose error from a surface is at most e is, as written, within e + position_rounding.
+  /// mesh whose error from a surface is at most e is, as written, within e + position_rounding,
+  /// for a consumer that adds the translation in double precision (a float32 pipeline rounds
+  /// f + t to float again and can do no better than float itself at |t|).
   std::vector<double> position_rounding;
 };
 
@@ -115,6 +118,10 @@ double write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, con
 std::vector<double> write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
                                       std::span<const double> coverage, const GltfOptions& options = {});
 
+/// The most memory parse_gltf lets the scene graph's placements of the mesh take (8 GiB): a
+/// small file can place a large mesh many times.
+inline constexpr std::uint64_t gltf_max_expanded_bytes = std::uint64_t{8} << 30;
+
 /// Parses the bytes of a .glb or .gltf file (told apart by the "glTF" magic) written by anyone,
 /// holding exactly one mesh primitive, of mode TRIANGLES: POSITION (float), optional NORMAL
 /// (float), TEXCOORD_0 (float, or normalised unsigned byte/short) and TANGENT (float), indices
@@ -130,13 +137,16 @@ std::vector<double> write_gltf_levels(const std::filesystem::path& path, std::sp
 /// attributes are not read. `path` names the file in messages, and its folder
 /// is where buffers (and images) in other files are read: a URI is a data: URI or a relative path
 /// (percent-decoded, as tinygltf decodes it) to a regular file inside that folder, with no ".."
-/// and no symbolic link leading out of it.
+/// and no symbolic link leading out of it; the file read is the one checked (its canonical path,
+/// not followed if a link replaced it since), its size checked before it is read.
 /// \throws ParseError naming `path` if the bytes are no such glTF (a required extension, sparse
 ///         accessors, values that are not finite, a zero normal, tangent w other than +-1, an
 ///         index out of range, data outside its buffer, a buffer file that cannot be read, a
 ///         buffer or image URI naming a file outside the folder, naming the URI; a node hierarchy
 ///         with a cycle or a node with two parents, a singular or non-affine transform, a
-///         non-finite one, a zero quaternion, naming the node).
+///         non-finite one, a zero quaternion, a skinned node, a vertex not finite after its
+///         node's transform, naming the node; a default scene that does not exist; morph
+///         targets; placements taking more than gltf_max_expanded_bytes).
 RenderMesh parse_gltf(std::string_view bytes, const std::filesystem::path& path, bool z_up = true);
 
 /// Reads a .glb or .gltf file as parse_gltf does.

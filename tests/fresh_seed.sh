@@ -8,9 +8,18 @@
 #   fresh_seed.sh PROGRAM FILTER     (FILTER: the program's properties, a gtest filter)
 #
 # The seed is PATCHWORK_FRESH_SEED when set (scripts/test draws one and prints it), else 64 bits
-# from /dev/urandom. Registered by tests/CMakeLists.txt (label fresh_seed).
+# from /dev/urandom. Registered by tests/CMakeLists.txt (label fresh_seed). Fails when the filter
+# runs no test.
 set -euo pipefail
 program=$1 filter=$2
 seed=${PATCHWORK_FRESH_SEED:-$(od -An -N8 -tu8 /dev/urandom | tr -d ' ')}
 echo "fresh RapidCheck seed $seed: a failure reproduces with RC_PARAMS=seed=$seed $program --gtest_filter=SUITE.NAME"
-RC_PARAMS="seed=$seed" exec "$program" --gtest_filter="$filter" --gtest_brief=1
+status=0
+output=$(RC_PARAMS="seed=$seed" "$program" --gtest_filter="$filter" --gtest_brief=1 2>&1) || status=$?
+printf '%s\n' "$output"
+# A filter that matches nothing (a renamed suite) would pass without testing anything.
+if ! grep -qE '^\[==========\] [1-9][0-9]* tests? from' <<< "$output"; then
+  echo "fresh_seed.sh: the filter '$filter' runs no test of $program" >&2
+  exit 1
+fi
+exit "$status"

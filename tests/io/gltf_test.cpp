@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -894,6 +895,49 @@ TEST_F(GltfFile, NodeGraphsThatCannotBeHonouredAreRefusedNamingTheNode) {
     d["scenes"][0]["nodes"] = {1, 0};
   }, "scene 0 lists node 0 ('patchwork'), a child of node 1, as a root");
   expect_refused("nomesh.gltf", [](json& d) { d["nodes"][0].erase("mesh"); }, "no node of the scene holds the mesh");
+  // Not silently scene 0: the file names a scene it does not have.
+  expect_refused("scene.gltf", [](json& d) { d["scene"] = 3; }, "the default scene 3 does not exist (the file has 1 scenes)");
+  expect_refused("skin.gltf", [](json& d) {
+    d["nodes"][0]["skin"] = 0;
+    d["skins"] = json::array({{{"joints", {0}}}});
+  }, "node 0 ('patchwork') is skinned (skin 0)");
+  expect_refused("morph.gltf", [](json& d) {
+    d["meshes"][0]["primitives"][0]["targets"] = json::array({{{"POSITION", 0}}});
+  }, "the primitive has morph targets");
+  // A vertex that overflows under its node's world transform (here its parent's scale and
+  // translation) names the node that holds the mesh.
+  expect_refused("huge.gltf",
+                 [](json& d) { wrap(d, {{"name", "far"}, {"scale", {1e308, 1, 1}}, {"translation", {1e308, 0, 0}}}); },
+                 "POSITION of vertex 1 is not finite after the transform of node 0 ('patchwork')");
+}
+
+TEST_F(GltfFile, PlacementsBeyondTheMemoryLimitAreRefusedBeforeExpanding) {
+  // A mesh of 120,000 vertices (1.4 MB of floats) under 3,000 nodes of a few bytes each would
+  // expand to 360 M vertices, 12 GiB as doubles with their ids and indices: refused from the
+  // counts alone.
+  RenderMesh strip;
+  for (int k = 0; k < 120000; ++k) strip.positions.emplace_back(k, k % 2, 0.0);
+  for (std::uint32_t k = 0; k + 2 < 120000; k += 3) strip.indices.insert(strip.indices.end(), {k, k + 1, k + 2});
+  strip.position_ids.resize(strip.positions.size());
+  std::iota(strip.position_ids.begin(), strip.position_ids.end(), 0u);
+  json document = json::parse(format_gltf(strip, GltfFormat::gltf));
+  const json written = document["nodes"][0];
+  std::vector<int> roots;
+  for (int k = 0; k < 3000; ++k) {
+    if (k > 0) document["nodes"].push_back(written);
+    roots.push_back(k);
+  }
+  document["scenes"][0]["nodes"] = roots;
+  const fs::path path = file("placed.gltf");
+  write_file_atomically(path, document.dump());
+  expect_parse_error(path, "3000 instances of a mesh of 120000 vertices and 40000 triangles would take");
+  // The same mesh under 10 nodes is read (1.2 M vertices).
+  json ten = json::array();
+  for (int k = 0; k < 10; ++k) ten.push_back(written);
+  document["nodes"] = ten;
+  document["scenes"][0]["nodes"] = std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  write_file_atomically(path, document.dump());
+  EXPECT_EQ(read_gltf(path).vertex_count(), 1200000u);
 }
 
 // A buffer in a file of its own: the cube's .glb JSON with buffers[0].uri = `uri`, in folder
