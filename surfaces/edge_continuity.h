@@ -24,7 +24,9 @@ namespace patchwork {
 
 /// How two patches join along a shared edge.
 struct EdgeContinuity {
-  /// Largest distance between corresponding control points of the two boundary curves.
+  /// A bound on the distance between the two boundary curves at equal parameters: the largest
+  /// distance between corresponding control points (polynomial edges), plus the weights' term
+  /// of the file comment where an edge is rational.
   double gap;
   /// The highest k <= the degrees across the edge for which the join is C^k (cross-boundary
   /// derivatives of orders 0..k agree, each patch in its own parameters on [0,1]^2); -1 if the
@@ -58,10 +60,14 @@ namespace detail {
 /// largest distance of their points P_i = H_i / w_i, the spread e of their weight ratios, and
 /// the bound on the curves' distance that they give (the file comment).
 struct EdgeAgreement {
+  /// max_i |P_i - Q_i|.
   double points;
+  /// e = max r / min r - 1 of the weight ratios r_i = w'_i / w_i.
   double weights;
+  /// points + e max_i |Q_i - Q_0|: the curves' distance at equal parameters is at most this.
   double gap;
 };
+/// \pre a.size() == b.size(), every weight positive.
 EdgeAgreement edge_agreement(const std::vector<Vec4>& a, const std::vector<Vec4>& b, bool reversed);
 }  // namespace detail
 

@@ -170,10 +170,8 @@ const char* edge_name(PatchEdge edge) {
   return "?";
 }
 
-namespace {
-
 // The nets and, where a patch is rational (weights not all equal), the rational patches.
-PatchSet::Kinds split_kinds(std::span<const AnyBezierPatch> patches) {
+PatchSet::Kinds PatchSet::split_kinds(std::span<const AnyBezierPatch> patches) {
   std::vector<BezierPatch3> nets;
   std::vector<std::optional<RationalBezierPatch>> rational(patches.size());
   nets.reserve(patches.size());
@@ -190,16 +188,14 @@ PatchSet::Kinds split_kinds(std::span<const AnyBezierPatch> patches) {
   return {std::move(nets), std::move(rational)};
 }
 
-// The homogeneous points (w P, w) of an edge: the net's row with the rational patch's weights,
-// or weight 1.
-std::vector<Vec4> homogeneous_row(const std::vector<Vec3>& row, const std::optional<RationalBezierPatch>& patch,
-                                  PatchEdge edge) {
+namespace {
+
+// The homogeneous points (w P, w) of an edge: the rational patch's homogeneous row, or the
+// net's row with weight 1.
+std::vector<Vec4> homogeneous_row(const std::vector<Vec3>& row, const RationalBezierPatch* patch, PatchEdge edge) {
+  if (patch != nullptr) return row_from_edge(patch->homogeneous(), edge, 0);
   std::vector<Vec4> result(row.size());
-  const std::vector<Vec4> weighted = patch ? row_from_edge(patch->homogeneous(), edge, 0) : std::vector<Vec4>();
-  for (std::size_t i = 0; i < row.size(); ++i) {
-    const double w = patch ? weighted[i][3] : 1.0;
-    result[i] << w * row[i], w;
-  }
+  for (std::size_t i = 0; i < row.size(); ++i) result[i] << row[i], 1.0;
   return result;
 }
 
@@ -219,14 +215,22 @@ const std::vector<BezierPatch3>& PatchSet::patches() const {
   return nets_;
 }
 
+namespace {
+void check_patch_index(std::uint32_t p, std::size_t count) {
+  if (p >= count) throw InvalidInput(detail::message("PatchSet: patch ", p, " of ", count, " does not exist"));
+}
+}  // namespace
+
 AnyBezierPatch PatchSet::patch(std::uint32_t p) const {
+  check_patch_index(p, count());
   if (is_rational(p)) return *rational_[p];
-  return nets_.at(p);
+  return nets_[p];
 }
 
 RationalBezierPatch PatchSet::rational_patch(std::uint32_t p) const {
+  check_patch_index(p, count());
   if (is_rational(p)) return *rational_[p];
-  return as_rational(nets_.at(p));
+  return as_rational(nets_[p]);
 }
 
 PatchSet::PatchSet(Kinds kinds, double relative_tolerance)
@@ -271,8 +275,8 @@ PatchSet::PatchSet(Kinds kinds, double relative_tolerance)
   // A rational pair: the homogeneous rows at one degree, points within the tolerance and
   // weights proportional within the relative tolerance.
   const auto rational_match = [&](std::size_t a, std::size_t b, bool reversed) {
-    std::vector<Vec4> ha = homogeneous_row(points[a], is_rational(edges[a].patch) ? rational_[edges[a].patch] : std::nullopt, edges[a].edge);
-    std::vector<Vec4> hb = homogeneous_row(points[b], is_rational(edges[b].patch) ? rational_[edges[b].patch] : std::nullopt, edges[b].edge);
+    std::vector<Vec4> ha = homogeneous_row(points[a], rational(edges[a].patch), edges[a].edge);
+    std::vector<Vec4> hb = homogeneous_row(points[b], rational(edges[b].patch), edges[b].edge);
     const int degree = static_cast<int>(std::max(ha.size(), hb.size())) - 1;
     ha = elevate_degree(BezierCurve<4>(ha), degree - static_cast<int>(ha.size()) + 1).control_points();
     hb = elevate_degree(BezierCurve<4>(hb), degree - static_cast<int>(hb.size()) + 1).control_points();
@@ -518,10 +522,10 @@ std::vector<Shell> shells(const PatchSet& set) {
 }
 
 PatchSetReport report(const PatchSet& set) {
-  PatchSetReport r{set.count(), set.rational_count(), set.shared_edges().size(), set.open_edges().size(),
+  PatchSetReport r{set.count(), set.shared_edges().size(), set.open_edges().size(),
                    set.collapsed_edges().size(), set.boundary_loops().size(), set.touching_points().size(),
                    set.t_junctions().size(), true, set.open_edges().empty(),
-                   set.shared_edges().empty() ? -1 : 1 << 30, 0, set.tolerance(), &set};
+                   set.shared_edges().empty() ? -1 : 1 << 30, 0, set.tolerance(), &set, set.rational_count()};
   for (const TJunction& t : set.t_junctions()) r.consistently_oriented = r.consistently_oriented && t.consistently_oriented;
   for (const SharedEdge& s : set.shared_edges()) {
     r.consistently_oriented = r.consistently_oriented && s.consistently_oriented;

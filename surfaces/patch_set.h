@@ -4,7 +4,8 @@
 // Every patch has four boundary edges (PatchEdge); an edge is
 //   - collapsed when all its control points coincide (within the tolerance): the teapot's poles;
 //   - shared when another patch has an edge with the same control points, in the same or the
-//     reverse order (the lower degree elevated first when the degrees differ);
+//     reverse order (the lower degree elevated first when the degrees differ), and, where a
+//     patch is rational, proportional weights;
 //   - part of a T-junction when it and other patches' edges lie end to end along a longer edge
 //     (TJunction: each is the long edge's de Casteljau piece between two parameters);
 //   - open otherwise: a boundary of the set.
@@ -38,7 +39,7 @@ struct EdgeRef {
   friend bool operator==(const EdgeRef&, const EdgeRef&) = default;
 };
 
-/// Two patch edges with the same control points.
+/// Two patch edges with the same control points (and proportional weights where rational).
 struct SharedEdge {
   EdgeRef first;
   EdgeRef second;
@@ -108,13 +109,14 @@ class PatchSet {
   std::size_t count() const noexcept { return nets_.size(); }
   /// The number of rational patches (those with weights that are not all equal).
   std::size_t rational_count() const noexcept { return rational_count_; }
-  /// Patch p is rational.
-  bool is_rational(std::uint32_t p) const noexcept { return !rational_.empty() && rational_[p].has_value(); }
-  /// Patch p's rational form where it is rational, else null.
+  /// Patch p is rational (false for p >= count()).
+  bool is_rational(std::uint32_t p) const noexcept { return p < rational_.size() && rational_[p].has_value(); }
+  /// Patch p's rational form where it is rational, else null (also for p >= count()).
   const RationalBezierPatch* rational(std::uint32_t p) const noexcept { return is_rational(p) ? &*rational_[p] : nullptr; }
-  /// Patch p, of its kind.
+  /// Patch p, of its kind. \throws InvalidInput if p >= count().
   AnyBezierPatch patch(std::uint32_t p) const;
   /// Patch p as a rational patch (every weight 1 where it is polynomial).
+  /// \throws InvalidInput if p >= count().
   RationalBezierPatch rational_patch(std::uint32_t p) const;
   /// The absolute tolerance used for comparisons.
   double tolerance() const noexcept { return tolerance_; }
@@ -137,10 +139,10 @@ class PatchSet {
   /// The edge shared with `edge`, if any.
   std::optional<EdgeRef> neighbour(EdgeRef edge) const;
 
- /// The nets, and per patch the rational patch where it is one (internal).
-  using Kinds = std::pair<std::vector<BezierPatch3>, std::vector<std::optional<RationalBezierPatch>>>;
-
  private:
+  // The nets, and per patch the rational patch where it is one.
+  using Kinds = std::pair<std::vector<BezierPatch3>, std::vector<std::optional<RationalBezierPatch>>>;
+  static Kinds split_kinds(std::span<const AnyBezierPatch> patches);
   PatchSet(Kinds kinds, double relative_tolerance);
 
   std::vector<BezierPatch3> nets_;
@@ -160,8 +162,6 @@ class PatchSet {
 /// Everything a PatchSet knows, in one value that prints as text and as JSON.
 struct PatchSetReport {
   std::size_t patches;
-  /// How many of them are rational.
-  std::size_t rational_patches;
   std::size_t shared_edges;
   std::size_t open_edges;
   std::size_t collapsed_edges;
@@ -178,6 +178,8 @@ struct PatchSetReport {
   std::size_t g1_edges;
   double tolerance;
   const PatchSet* set;
+  /// How many of the patches are rational.
+  std::size_t rational_patches = 0;
 };
 
 /// Patches joined by shared edges and T-junctions, one connected part of a set.

@@ -14,13 +14,12 @@ void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& wei
   const std::size_t count_u = weights.us().size();
   const std::size_t count_v = weights.vs().size();
   // Degeneracy is judged as in unit_normal: relative to the size of the net of points P_ij.
-  const BezierPatch3 net = patch.control_net();
-  Eigen::AlignedBox3d box(net.control_points().front());
-  for (const Vec3& p : net.control_points()) box.extend(p);
+  const BezierPatch4& H = patch.homogeneous();
+  Eigen::AlignedBox3d box(H.control_points().front().head<3>() / H.control_points().front()[3]);
+  for (const Vec4& h : H.control_points()) box.extend(Vec3(h.head<3>() / h[3]));
   const double scale = box.diagonal().norm();
   const double threshold = 1e-12 * std::max(n * m, 1) * scale * scale;
   const double derivative_threshold = 1e-12 * std::max({n, m, 1}) * scale;
-  const BezierPatch4& H = patch.homogeneous();
   std::vector<Vec4> Q(static_cast<std::size_t>(n) + 1);
   std::vector<Vec4> dQ(static_cast<std::size_t>(n) + 1);
   for (std::size_t b = 0; b < count_v; ++b) {

@@ -82,7 +82,12 @@ Vec3 unit_normal(const BezierPatch3& patch, double u, double v) {
 namespace {
 
 double net_scale(const BezierPatch3& patch) { return net_size(patch.control_points()); }
-double net_scale(const RationalBezierPatch& patch) { return net_size(patch.control_net().control_points()); }
+double net_scale(const RationalBezierPatch& patch) {
+  const std::vector<Vec4>& H = patch.homogeneous().control_points();
+  Eigen::AlignedBox3d box(H.front().head<3>() / H.front()[3]);
+  for (const Vec4& h : H) box.extend(Vec3(h.head<3>() / h[3]));
+  return box.diagonal().norm();
+}
 
 // unit_derivative_direction for either kind of patch (both have partial_derivatives).
 template <class Patch>

@@ -2,6 +2,7 @@
 // T-junctions, weld gaps and solids, or each patch split k x k (surfaces/tessellator.h).
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "core/errors.h"
@@ -56,10 +57,11 @@ double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {
   return box.diagonal().norm();
 }
 
-// Per patch, the largest gap of its joined edges (SurfacePieces::gaps): the control-point gap of
-// its shared edges and T-junctions (which bounds the curves' distance point for point, the
-// curves being convex combinations of their control points) and the spread of its collapsed
-// edges' control points around the point they weld to.
+// Per patch, the largest gap of its joined edges (SurfacePieces::gaps): the gap of its shared
+// edges and T-junctions (EdgeContinuity::gap bounds the curves' distance point for point; for
+// polynomial edges it is the control-point gap, the curves being convex combinations of their
+// control points) and the spread of its collapsed edges' control points around the point they
+// weld to (a rational edge's points are convex combinations of them too).
 std::vector<double> edge_gaps(const PatchSet& set) {
   std::vector<double> gaps(set.count(), 0.0);
   const auto widen = [&](std::uint32_t p, double gap) { gaps[p] = std::max(gaps[p], gap); };
@@ -84,12 +86,24 @@ std::vector<std::int32_t> solids_of(const PatchSet& set) {
   std::int32_t next = 0;
   for (const Shell& shell : shells(set)) {
     if (!shell.closed || !shell.consistently_oriented) continue;
+    // Only polynomial pieces are ever culled as back-facing: a shell of rational patches alone
+    // needs no volume.
+    if (std::all_of(shell.patches.begin(), shell.patches.end(), [&](std::uint32_t p) { return set.is_rational(p); })) {
+      continue;
+    }
     double volume = 0.0;
-    for (std::uint32_t p : shell.patches) {
-      // A rational patch's share by quadrature, to far below the volume's size (only its sign
-      // is used).
-      const RationalBezierPatch* rational = set.rational(p);
-      volume += rational != nullptr ? volume_contribution(*rational).value : volume_contribution(set.control_nets()[p]);
+    try {
+      for (std::uint32_t p : shell.patches) {
+        // A rational patch's share by quadrature, to an absolute tolerance far below the size
+        // of a volume of this set (only the sign is used); where the quadrature cannot reach
+        // it, the shell is not taken for a solid (no culling, never a hole).
+        const RationalBezierPatch* rational = set.rational(p);
+        const double tolerance = 1e-9 * std::pow(set.size(), 3) / static_cast<double>(shell.patches.size());
+        volume += rational != nullptr ? volume_contribution(*rational, tolerance).value
+                                      : volume_contribution(set.control_nets()[p]);
+      }
+    } catch (const NumericalError&) {
+      continue;
     }
     if (!(volume > 0.0)) continue;
     for (std::uint32_t p : shell.patches) solids[p] = next;

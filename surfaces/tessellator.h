@@ -205,8 +205,9 @@ struct SurfacePieces {
   /// them; else null): each piece lies in the convex hull of its net; where `rational` says
   /// so, the piece is the rational patch of that net and its weights, else the net itself.
   const std::vector<BezierPatch3>* patches = nullptr;
-  /// Per piece, whether it is rational (empty: none is). The camera mode does not cull rational
-  /// pieces as back-facing (view_culling.h decides that for polynomial patches).
+  /// With `patches`, per piece whether it is rational (empty: none is; split pieces, which have
+  /// no `patches`, leave it empty). The camera mode does not cull rational pieces as
+  /// back-facing (view_culling.h decides that for polynomial patches).
   std::vector<bool> rational;
   /// Per piece, the solid it bounds, or -1 (empty: none does). A solid is a shell (shells() of
   /// a PatchSet) that is closed, consistently oriented and of positive enclosed volume, so that

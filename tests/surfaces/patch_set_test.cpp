@@ -11,6 +11,7 @@
 #include "core/errors.h"
 #include "surfaces/tessellator.h"
 #include "tests/surfaces/patch_fixtures.h"
+#include "tests/surfaces/rational_shapes.h"
 
 namespace patchwork {
 namespace {
@@ -263,6 +264,156 @@ TEST(PatchSet, ASetOfOnePointIsAnalysedAndRefusedByTheTessellator) {
   TessellationOptions options;
   options.segments = 2;
   EXPECT_THROW(tessellate(set, options), InvalidInput);
+}
+
+
+TEST(RationalPatchSet, SphereOctantsCloseUp) {
+  const PatchSet set(testing::as_any(testing::unit_sphere_octants()));
+  const PatchSetReport r = report(set);
+  EXPECT_EQ(r.patches, 8u);
+  EXPECT_EQ(r.rational_patches, 8u);
+  EXPECT_EQ(r.shared_edges, 12u);
+  EXPECT_EQ(r.collapsed_edges, 8u);
+  EXPECT_EQ(r.open_edges, 0u);
+  EXPECT_TRUE(r.closed);
+  EXPECT_TRUE(r.consistently_oriented);
+  // The octants meet with tangent continuity (one sphere) and, in their homogeneous nets, C^0
+  // at least; the edges are the same rational curves, so there is no gap.
+  EXPECT_EQ(r.g1_edges, 12u);
+  // The homogeneous nets of neighbouring octants join C^0 only (their second rows differ in
+  // weight), a lower bound for the surfaces' continuity, which is C^infinity on the sphere.
+  EXPECT_EQ(r.min_ck, 0);
+  for (const SharedEdge& s : set.shared_edges()) EXPECT_LT(s.continuity.gap, 1e-15);
+  EXPECT_EQ(nlohmann::json::parse(to_json(r))["rational_patches"], 8);
+  std::ostringstream text;
+  text << r;
+  EXPECT_NE(text.str().find("8 patches (8 rational)"), std::string::npos);
+  EXPECT_TRUE(set.is_rational(7));
+  EXPECT_FALSE(set.is_rational(8));
+  EXPECT_EQ(set.rational(8), nullptr);
+  EXPECT_THROW((void)set.patch(8), InvalidInput);
+  EXPECT_THROW((void)set.rational_patch(8), InvalidInput);
+  EXPECT_EQ(std::get<RationalBezierPatch>(set.patch(3)).homogeneous().control_points(),
+            testing::unit_sphere_octants()[3].homogeneous().control_points());
+  EXPECT_THROW((void)set.patches(), InvalidInput);
+  EXPECT_EQ(set.control_nets().size(), 8u);
+}
+
+TEST(RationalPatchSet, WeightsDecideWhetherAnEdgeIsShared) {
+  // A quarter cylinder (the arc along u, weights 1, 1/sqrt2, 1; height along v) and the
+  // polynomial patch on the same control points across the arc edge: the points agree, the
+  // curves do not (a parabola is not the arc), so the edge must stay open on both sides.
+  std::vector<Vec3> points;
+  std::vector<double> weights;
+  const auto arc = testing::quarter_circle(0.0);
+  for (int j = 0; j <= 1; ++j) {
+    for (int i = 0; i <= 2; ++i) {
+      points.emplace_back(arc[i].first.x(), arc[i].first.y(), static_cast<double>(j));
+      weights.push_back(arc[i].second);
+    }
+  }
+  const RationalBezierPatch cylinder(2, 1, points, weights);
+  // Below the arc edge v0: the polynomial patch whose v1 edge has the arc's control points.
+  std::vector<Vec3> below;
+  for (int j = 0; j <= 1; ++j) {
+    for (int i = 0; i <= 2; ++i) below.push_back(Vec3(arc[i].first.x(), arc[i].first.y(), j - 1.0));
+  }
+  const BezierPatch3 parabolic(2, 1, below);
+  const PatchSet apart(std::vector<AnyBezierPatch>{cylinder, parabolic});
+  EXPECT_EQ(apart.shared_edges().size(), 0u);
+  EXPECT_EQ(apart.open_edges().size(), 8u);
+  EXPECT_EQ(apart.rational_count(), 1u);
+  // The straight edge u0 (weights 1, 1) against a flat polynomial patch is shared, without gap.
+  const BezierPatch3 wall(1, 1, {Vec3(1, -1, 0), Vec3(1, 0, 0), Vec3(1, -1, 1), Vec3(1, 0, 1)});
+  const PatchSet joined(std::vector<AnyBezierPatch>{cylinder, wall});
+  ASSERT_EQ(joined.shared_edges().size(), 1u);
+  const SharedEdge& s = joined.shared_edges().front();
+  EXPECT_EQ(s.first.edge, PatchEdge::u0);
+  EXPECT_EQ(s.second.edge, PatchEdge::u1);
+  EXPECT_EQ(s.continuity.gap, 0.0);
+  EXPECT_EQ(joined.open_edges().size(), 6u);
+  // The wall continues the cylinder's tangent plane (x = 1 at the arc's start): G^1.
+  EXPECT_TRUE(s.continuity.g1);
+  // The same rational patch with its weights scaled by 3 is the same surface: its edges are
+  // shared with the original's copy moved onto it (weights proportional).
+  std::vector<double> tripled = weights;
+  for (double& w : tripled) w *= 3;
+  const PatchSet scaled(std::vector<AnyBezierPatch>{cylinder, RationalBezierPatch(2, 1, points, tripled)});
+  EXPECT_EQ(scaled.shared_edges().size(), 4u);  // each edge of the one with the same edge of the other
+}
+
+TEST(RationalPatchSet, EqualWeightsArePolynomial) {
+  const BezierPatch3 wall(1, 1, {Vec3(1, -1, 0), Vec3(1, 0, 0), Vec3(1, -1, 1), Vec3(1, 0, 1)});
+  const PatchSet set(std::vector<AnyBezierPatch>{RationalBezierPatch(1, 1, wall.control_points(), {2, 2, 2, 2})});
+  EXPECT_EQ(set.rational_count(), 0u);
+  EXPECT_EQ(set.patches().front().control_points(), wall.control_points());
+}
+
+
+// The gap with weights that are proportional only within the tolerance: the reported bound holds
+// the sampled distance of the two curves, and beyond the tolerance the edge is open.
+TEST(RationalPatchSet, NearlyProportionalWeightsBoundTheGap) {
+  const auto arc = testing::quarter_circle(0.3);
+  const auto net = [&](double lift, double delta) {
+    std::vector<Vec3> points;
+    std::vector<double> weights;
+    for (int j = 0; j <= 1; ++j) {
+      for (int i = 0; i <= 2; ++i) {
+        points.emplace_back(2 * arc[i].first.x(), 2 * arc[i].first.y(), lift * j);
+        weights.push_back(arc[i].second * (1 + delta * i));
+      }
+    }
+    return RationalBezierPatch(2, 1, points, weights);
+  };
+  // Below: the same arc as its v0 edge (z = 0), weights scaled by (1 + delta i).
+  const RationalBezierPatch above = net(1.0, 0.0);
+  for (const double delta : {3e-10, 3e-9}) {
+    const RationalBezierPatch below = net(-1.0, delta);
+    const PatchSet set(std::vector<AnyBezierPatch>{above, below});
+    if (delta > 1e-9) {
+      EXPECT_TRUE(set.shared_edges().empty()) << delta;
+      continue;
+    }
+    ASSERT_EQ(set.shared_edges().size(), 1u) << delta;
+    const double gap = set.shared_edges().front().continuity.gap;
+    EXPECT_GT(gap, 0.0);
+    double sampled = 0.0;
+    for (int k = 0; k <= 1000; ++k) {
+      const double t = k / 1000.0;
+      sampled = std::max(sampled, (above.evaluate(t, 0.0) - below.evaluate(t, 0.0)).norm());
+    }
+    EXPECT_LE(sampled, gap);
+    EXPECT_GT(sampled, 0.1 * gap);  // and the bound is not loose by orders of magnitude
+  }
+  // An arc against its degree-elevated form, reversed: the same curve, shared without gap.
+  const RationalBezierPatch elevated = elevate_degree(above, 1, 0);
+  std::vector<Vec4> turned = elevated.homogeneous().control_points();
+  for (int j = 0; j <= 1; ++j) std::reverse(turned.begin() + 4 * j, turned.begin() + 4 * j + 4);
+  for (Vec4& h : turned) h.z() = -h.z() + 2 * h.w();  // moved up by reflection: its bottom edge is above's top
+  const PatchSet pair(std::vector<AnyBezierPatch>{above, RationalBezierPatch(BezierPatch4(3, 1, turned))});
+  ASSERT_EQ(pair.shared_edges().size(), 1u);
+  EXPECT_TRUE(pair.shared_edges().front().reversed);
+  EXPECT_LT(pair.shared_edges().front().continuity.gap, 1e-14);
+}
+
+// A rational edge against its two halves (homogeneous de Casteljau): not a T-junction, which
+// rational edges take no part in; all three edges stay open.
+TEST(RationalPatchSet, RationalEdgesTakeNoPartInTJunctions) {
+  const RationalBezierPatch octant = sphere_octant(Vec3::Zero(), 1.0);
+  const auto [left, right] = split_u(octant, 0.5);
+  // The halves mirrored through z = 0 meet the octant along its equator (edge v0) in halves.
+  const auto mirrored = [](const RationalBezierPatch& patch) {
+    std::vector<Vec4> H = patch.homogeneous().control_points();
+    for (Vec4& h : H) h.z() = -h.z();
+    return RationalBezierPatch(BezierPatch4(patch.degree_u(), patch.degree_v(), H));
+  };
+  const PatchSet set(std::vector<AnyBezierPatch>{octant, mirrored(left), mirrored(right)});
+  EXPECT_TRUE(set.t_junctions().empty());
+  for (std::uint32_t p : {0u, 1u, 2u}) {
+    EXPECT_NE(std::find(set.open_edges().begin(), set.open_edges().end(), EdgeRef{p, PatchEdge::v0}), set.open_edges().end())
+        << "patch " << p << ": its equator edge stays open";
+  }
+  EXPECT_EQ(set.rational_count(), 3u);
 }
 
 }  // namespace

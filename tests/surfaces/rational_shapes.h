@@ -5,12 +5,18 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <vector>
 
 #include "surfaces/rational_bezier_patch.h"
 
 namespace patchwork::testing {
+
+/// The patches as a PatchSet's input.
+inline std::vector<AnyBezierPatch> as_any(const std::vector<RationalBezierPatch>& patches) {
+  return {patches.begin(), patches.end()};
+}
 
 /// The control points (x, y) and weights of the unit circle's quarter from angle a.
 inline std::array<std::pair<Vec2, double>, 3> quarter_circle(double a) {
@@ -75,6 +81,36 @@ inline std::vector<RationalBezierPatch> torus_patches(double R, double r) {
     }
   }
   return result;
+}
+
+/// The closed wedge {x, y >= 0, x^2 + y^2 <= radius^2, 0 <= z <= height} moved by `offset`, as
+/// a mixed shell with outward normals: the curved side and the two quarter-disk caps rational
+/// (degrees (2, 1), a cap's centre row collapsed), the two flat sides polynomial.
+inline std::vector<AnyBezierPatch> wedge(double radius, double height, const Vec3& offset) {
+  const auto arc = quarter_circle(0.0);
+  const auto rational = [&](const std::function<Vec3(int, int)>& point) {
+    std::vector<Vec3> points;
+    std::vector<double> weights;
+    for (int j = 0; j <= 1; ++j) {
+      for (int i = 0; i <= 2; ++i) {
+        points.push_back(offset + point(i, j));
+        weights.push_back(arc[i].second);
+      }
+    }
+    return RationalBezierPatch(2, 1, points, weights);
+  };
+  const auto rim = [&](int i, double z) { return Vec3(radius * arc[i].first.x(), radius * arc[i].first.y(), z); };
+  const auto flat = [&](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    return BezierPatch3(1, 1, {offset + a, offset + b, offset + c, offset + d});
+  };
+  const double r = radius, h = height;
+  return {
+      rational([&](int i, int j) { return rim(i, h * j); }),                                   // curved: u along the arc, v up
+      rational([&](int i, int j) { return j == 0 ? Vec3(0, 0, 0) : rim(i, 0.0); }),            // bottom: centre to rim
+      rational([&](int i, int j) { return j == 0 ? rim(i, h) : Vec3(0, 0, h); }),              // top: rim to centre
+      flat(Vec3(0, 0, 0), Vec3(r, 0, 0), Vec3(0, 0, h), Vec3(r, 0, h)),                        // y = 0: u along x, v up
+      flat(Vec3(0, 0, 0), Vec3(0, 0, h), Vec3(0, r, 0), Vec3(0, r, h)),                        // x = 0: u up, v along y
+  };
 }
 
 /// Distance from p to the torus of radii R and r about z.

@@ -9,16 +9,15 @@
 
 #include "core/errors.h"
 #include "meshes/topology.h"
+#include "surfaces/patch_grid.h"
 #include "surfaces/patch_set.h"
+#include "surfaces/rational_bounds.h"
+#include "surfaces/surface_normal.h"
 #include "surfaces/tessellator.h"
 #include "tests/surfaces/rational_shapes.h"
 
 namespace patchwork {
 namespace {
-
-std::vector<AnyBezierPatch> any(const std::vector<RationalBezierPatch>& patches) {
-  return {patches.begin(), patches.end()};
-}
 
 // Every vertex, edge midpoint and triangle centroid of the mesh is within `bound` of the
 // surface whose distance function is given, and every normal is the exact one.
@@ -43,76 +42,11 @@ void expect_on_surface(const RenderMesh& mesh, double bound, const std::function
   EXPECT_LT(worst_angle, 1e-7);
 }
 
-TEST(RationalPatchSet, SphereOctantsCloseUp) {
-  const PatchSet set(any(testing::unit_sphere_octants()));
-  const PatchSetReport r = report(set);
-  EXPECT_EQ(r.patches, 8u);
-  EXPECT_EQ(r.rational_patches, 8u);
-  EXPECT_EQ(r.shared_edges, 12u);
-  EXPECT_EQ(r.collapsed_edges, 8u);
-  EXPECT_EQ(r.open_edges, 0u);
-  EXPECT_TRUE(r.closed);
-  EXPECT_TRUE(r.consistently_oriented);
-  // The octants meet with tangent continuity (one sphere) and, in their homogeneous nets, C^0
-  // at least; the edges are the same rational curves, so there is no gap.
-  EXPECT_EQ(r.g1_edges, 12u);
-  EXPECT_GE(r.min_ck, 0);
-  for (const SharedEdge& s : set.shared_edges()) EXPECT_LT(s.continuity.gap, 1e-15);
-  EXPECT_THROW((void)set.patches(), InvalidInput);
-  EXPECT_EQ(set.control_nets().size(), 8u);
-}
-
-TEST(RationalPatchSet, WeightsDecideWhetherAnEdgeIsShared) {
-  // A quarter cylinder (the arc along u, weights 1, 1/sqrt2, 1; height along v) and the
-  // polynomial patch on the same control points across the arc edge: the points agree, the
-  // curves do not (a parabola is not the arc), so the edge must stay open on both sides.
-  std::vector<Vec3> points;
-  std::vector<double> weights;
-  const auto arc = testing::quarter_circle(0.0);
-  for (int j = 0; j <= 1; ++j) {
-    for (int i = 0; i <= 2; ++i) {
-      points.emplace_back(arc[i].first.x(), arc[i].first.y(), static_cast<double>(j));
-      weights.push_back(arc[i].second);
-    }
-  }
-  const RationalBezierPatch cylinder(2, 1, points, weights);
-  // Below the arc edge v0: the polynomial patch whose v1 edge has the arc's control points.
-  std::vector<Vec3> below;
-  for (int j = 0; j <= 1; ++j) {
-    for (int i = 0; i <= 2; ++i) below.push_back(Vec3(arc[i].first.x(), arc[i].first.y(), j - 1.0));
-  }
-  const BezierPatch3 parabolic(2, 1, below);
-  const PatchSet apart(std::vector<AnyBezierPatch>{cylinder, parabolic});
-  EXPECT_EQ(apart.shared_edges().size(), 0u);
-  EXPECT_EQ(apart.rational_count(), 1u);
-  // The straight edge u0 (weights 1, 1) against a flat polynomial patch is shared, without gap.
-  const BezierPatch3 wall(1, 1, {Vec3(1, -1, 0), Vec3(1, 0, 0), Vec3(1, -1, 1), Vec3(1, 0, 1)});
-  const PatchSet joined(std::vector<AnyBezierPatch>{cylinder, wall});
-  ASSERT_EQ(joined.shared_edges().size(), 1u);
-  const SharedEdge& s = joined.shared_edges().front();
-  EXPECT_EQ(s.first.edge, PatchEdge::u0);
-  EXPECT_EQ(s.second.edge, PatchEdge::u1);
-  EXPECT_EQ(s.continuity.gap, 0.0);
-  // The same rational patch with its weights scaled by 3 is the same surface: its edges are
-  // shared with the original's copy moved onto it (weights proportional).
-  std::vector<double> tripled = weights;
-  for (double& w : tripled) w *= 3;
-  const PatchSet scaled(std::vector<AnyBezierPatch>{cylinder, RationalBezierPatch(2, 1, points, tripled)});
-  EXPECT_EQ(scaled.shared_edges().size(), 4u);  // each edge of the one with the same edge of the other
-}
-
-TEST(RationalPatchSet, EqualWeightsArePolynomial) {
-  const BezierPatch3 wall(1, 1, {Vec3(1, -1, 0), Vec3(1, 0, 0), Vec3(1, -1, 1), Vec3(1, 0, 1)});
-  const PatchSet set(std::vector<AnyBezierPatch>{RationalBezierPatch(1, 1, wall.control_points(), {2, 2, 2, 2})});
-  EXPECT_EQ(set.rational_count(), 0u);
-  EXPECT_EQ(set.patches().front().control_points(), wall.control_points());
-}
-
 class RationalTessellation : public ::testing::TestWithParam<double> {};
 
 TEST_P(RationalTessellation, SphereIsClosedAndWithinTheTolerance) {
   const double tolerance = GetParam();
-  const PatchSet set(any(testing::unit_sphere_octants()));
+  const PatchSet set(testing::as_any(testing::unit_sphere_octants()));
   TessellationOptions options;
   options.tolerance = tolerance;
   const Tessellation result = tessellate(set, options);
@@ -142,7 +76,7 @@ TEST_P(RationalTessellation, SphereIsClosedAndWithinTheTolerance) {
 TEST_P(RationalTessellation, TorusIsClosedAndWithinTheTolerance) {
   const double tolerance = GetParam();
   const double R = 2.0, r = 0.5;
-  const PatchSet set(any(testing::torus_patches(R, r)));
+  const PatchSet set(testing::as_any(testing::torus_patches(R, r)));
   const PatchSetReport patches = report(set);
   EXPECT_EQ(patches.shared_edges, 32u);
   EXPECT_TRUE(patches.closed);
@@ -169,7 +103,7 @@ INSTANTIATE_TEST_SUITE_P(Tolerances, RationalTessellation, ::testing::Values(1e-
 #endif
 
 TEST(RationalTessellation, UniformAndCameraModesTakeRationalPieces) {
-  const PatchSet set(any(testing::unit_sphere_octants()));
+  const PatchSet set(testing::as_any(testing::unit_sphere_octants()));
   TessellationOptions uniform;
   uniform.segments = 3;
   const Tessellation grid = tessellate(set, uniform);
@@ -181,6 +115,99 @@ TEST(RationalTessellation, UniformAndCameraModesTakeRationalPieces) {
   // Rational pieces are not culled as back-facing: all 8 octants are tessellated.
   EXPECT_EQ(seen.culled_patches, 0u);
   EXPECT_LE(seen.measured_error, seen.error_bound);
+}
+
+
+// Strongly uneven weights (a middle weight 8 pulls the surface towards its control point, and
+// F_uu is far from the net's): the pieces carry the rational quotient-rule bounds, and the
+// measured error stays within the bound.
+TEST(RationalTessellation, UnevenWeightsKeepTheGuarantee) {
+  std::vector<Vec3> points;
+  std::vector<double> weights;
+  for (int j = 0; j <= 2; ++j) {
+    for (int i = 0; i <= 2; ++i) {
+      points.emplace_back(i, j, (i == 1 && j == 1) ? 2.0 : 0.25 * i * j);
+      weights.push_back((i == 1 ? 8.0 : 1.0) * (j == 1 ? 0.5 : 1.0));
+    }
+  }
+  const RationalBezierPatch patch(2, 2, points, weights);
+  const PatchSet set(std::vector<AnyBezierPatch>{patch});
+  const SurfacePieces pieces = surface_pieces(set);
+  const SecondDerivativeBounds expected = second_derivative_bounds(patch, 4);
+  ASSERT_EQ(pieces.bounds.size(), 1u);
+  EXPECT_EQ(pieces.bounds[0].uu, expected.uu);
+  EXPECT_EQ(pieces.bounds[0].uv, expected.uv);
+  EXPECT_EQ(pieces.bounds[0].vv, expected.vv);
+  for (const double tolerance : {1e-2, 1e-3}) {
+    TessellationOptions options;
+    options.tolerance = tolerance;
+    const Tessellation result = tessellate(set, options);
+    EXPECT_LE(result.error_bound, tolerance);
+    EXPECT_LE(result.measured_error, result.error_bound);
+  }
+}
+
+// Split pieces (k = 2, 4) of rational patches: joined across the split lines and the octants'
+// edges, closed, within the bound.
+TEST(RationalTessellation, SplitPiecesOfTheSphereStayClosed) {
+  const PatchSet set(testing::as_any(testing::unit_sphere_octants()));
+  for (const int k : {2, 4}) {
+    TessellationOptions options;
+    options.tolerance = 1e-3;
+    const Tessellation result = tessellate(split_surface_pieces(set, k), options);
+    EXPECT_LE(result.measured_error, result.error_bound) << k;
+    double worst = 0.0;
+    for (const Vec3& p : result.mesh.positions) worst = std::max(worst, std::abs(p.norm() - 1.0));
+    EXPECT_LT(worst, 1e-15) << k;
+    const TopologyReport topology = analyze(welded_faces(result.mesh));
+    EXPECT_TRUE(topology.closed) << k;
+    EXPECT_EQ(topology.euler, 2) << k;
+  }
+}
+
+// A closed shell of rational and polynomial patches, 1000 units wide and far from the origin:
+// the camera mode finds it a solid (the rational patches' volume by quadrature to a tolerance
+// relative to the set) and culls the polynomial sides that face away; rational ones are kept.
+TEST(RationalTessellation, MixedSolidFarFromTheOriginIsCulledByItsPolynomialSides) {
+  const Vec3 offset(5000, -3000, 2000);
+  const PatchSet set(testing::wedge(1000.0, 400.0, offset));
+  const PatchSetReport r = report(set);
+  EXPECT_EQ(r.rational_patches, 3u);
+  ASSERT_TRUE(r.closed);
+  ASSERT_TRUE(r.consistently_oriented);
+  TessellationOptions options;
+  options.camera = Camera{offset + Vec3(3000, 3000, 1500), offset + Vec3(300, 300, 200), Vec3::UnitZ(), 45.0, 800, 600};
+  options.pixel_tolerance = 0.5;
+  const Tessellation seen = tessellate(set, options);
+  // The sides x = 0 and y = 0 face away from an eye at x, y > 0.
+  EXPECT_EQ(seen.culled_patches, 2u);
+  EXPECT_LE(seen.measured_error, seen.error_bound);
+  TessellationOptions everything = options;
+  everything.back_face_culling = BackFaceCulling::never;
+  EXPECT_EQ(tessellate(set, everything).culled_patches, 0u);
+}
+
+// The rational grid evaluation against the pointwise functions, the poles included.
+TEST(RationalTessellation, GridEvaluationMatchesPointwiseEvaluation) {
+  const RationalBezierPatch octant = sphere_octant(Vec3(1, 2, 3), 2.0);
+  const std::vector<double> us = {0.0, 0.25, 0.5, 1.0}, vs = {0.0, 0.3, 0.9, 1.0};
+  const std::size_t count = us.size() * vs.size();
+  std::vector<Vec3> points(count), normals(count);
+  std::vector<Vec4> tangents(count);
+  evaluate_grid(octant, PatchGridWeights(2, 2, us, vs), {points, normals, tangents});
+  for (std::size_t b = 0; b < vs.size(); ++b) {
+    for (std::size_t a = 0; a < us.size(); ++a) {
+      const std::size_t k = a + us.size() * b;
+      EXPECT_LT((points[k] - octant.evaluate(us[a], vs[b])).norm(), 1e-14);
+      const Vec3 normal = unit_normal(octant, us[a], vs[b]);
+      EXPECT_LT((normals[k] - normal).norm(), 1e-12) << us[a] << " " << vs[b];
+      // On the sphere the normal is the radial direction, at the pole (v = 1) too.
+      EXPECT_LT((normals[k] - (points[k] - Vec3(1, 2, 3)).normalized()).norm(), 1e-12);
+      const Vec4 tangent = unit_tangent(octant, us[a], vs[b], normal);
+      EXPECT_LT((tangents[k] - tangent).norm(), 1e-9) << us[a] << " " << vs[b];
+      EXPECT_LT(std::abs(tangents[k].head<3>().dot(normals[k])), 1e-12);
+    }
+  }
 }
 
 }  // namespace
