@@ -160,3 +160,25 @@ TEST(KnotInsertion, BadInputIsRefused) {
 
 }  // namespace
 }  // namespace patchwork
+
+namespace patchwork {
+namespace {
+
+RC_GTEST_PROP(NurbsCurve, RefinementAndElevationKeepTheCurve, ()) {
+  const auto curve = *bspline_gen::nurbs_curve<3>(1, 4, 4);
+  const auto extra = *rc::gen::container<std::vector<double>>(
+      static_cast<std::size_t>(*rc::gen::inRange(1, 5)), curve_gen::coordinate(curve.a(), curve.b()));
+  for (double u : extra) RC_PRE(curve.knot_vector().multiplicity(u) == 0);
+  RC_PRE(std::adjacent_find(extra.begin(), extra.end()) == extra.end());
+  const double scale = testing::max_norm(curve.homogeneous().control_points());
+  const auto refined = refine_knots(curve, extra);
+  RC_ASSERT(refined.knot_vector().size() == curve.knot_vector().size() + static_cast<int>(extra.size()));
+  RC_ASSERT(sampled_distance(curve, refined) <= 1e-12 * scale);
+  const auto elevated = elevate_degree(curve, 1);
+  RC_ASSERT(elevated.degree() == curve.degree() + 1);
+  RC_ASSERT(elevated.knot_vector().breakpoint_continuity() == curve.knot_vector().breakpoint_continuity());
+  RC_ASSERT(sampled_distance(curve, elevated) <= 1e-10 * scale);
+}
+
+}  // namespace
+}  // namespace patchwork
