@@ -83,11 +83,14 @@ class NurbsCurve {
   double weight(int i) const { return homogeneous_.control_points().at(static_cast<std::size_t>(i))[Dim]; }
   /// The curve of homogeneous points (w_i P_i, w_i).
   const Homogeneous& homogeneous() const noexcept { return homogeneous_; }
+  /// Start of the valid range, u_p.
   double a() const noexcept { return homogeneous_.a(); }
+  /// End of the valid range, u_{n+1}.
   double b() const noexcept { return homogeneous_.b(); }
 
-  /// C(u). \throws InvalidInput if u is not finite or outside [a, b].
+  /// C(u) = H_xyz(u) / w(u). \throws InvalidInput if u is not finite or outside [a, b].
   Point evaluate(double u) const;
+  /// C(u); same as evaluate.
   Point operator()(double u) const { return evaluate(u); }
 
   friend bool operator==(const NurbsCurve&, const NurbsCurve&) = default;

@@ -194,11 +194,20 @@ RC_GTEST_PROP(BSplineCurve, PeriodicCurveClosesWithDegreeMinusOneDerivatives, ()
   RC_ASSERT(closed.b() == 1.0);
   const auto start = derivatives(closed, 0.0, p);
   const auto end = derivatives(closed, 1.0, p);
-  double scale = 1.0;
+  // The rational closed curve over the same polygon with weights in [1/4, 4].
+  const auto weights = *rc::gen::container<std::vector<double>>(polygon.size(), curve_gen::coordinate(0.25, 4.0));
+  const NurbsCurve3 rational = periodic_curve<3>(p, polygon, weights);
+  const auto rational_start = derivatives(rational, 0.0, p);
+  const auto rational_end = derivatives(rational, 1.0, p);
+  double scale = exact_bspline::scale(closed);
   for (int j = 0; j < p; ++j) {
-    RC_ASSERT((start[static_cast<std::size_t>(j)] - end[static_cast<std::size_t>(j)]).norm() <= 1e-12 * scale * exact_bspline::scale(closed));
+    const auto at = static_cast<std::size_t>(j);
+    RC_ASSERT((start[at] - end[at]).norm() <= 1e-12 * scale);
+    RC_ASSERT((rational_start[at] - rational_end[at]).norm() <= 1e-10 * scale * std::pow(16.0, j));
     scale *= 2.0 * k;
   }
+  // Not C^p: the p-th derivative jumps for a generic polygon (p >= 1, k >= 3 distinct points).
+  if (k >= 3) RC_ASSERT((start[static_cast<std::size_t>(p)] - end[static_cast<std::size_t>(p)]).norm() > 1e-9 * scale);
 }
 
 TEST(BSplineCurve, BadInputIsRefused) {
