@@ -9,7 +9,6 @@
 // index r standing for N_{s-p+r,p}; the span follows KnotVector::span (u = b: last span).
 
 #include <Eigen/Core>
-
 #include <vector>
 
 #include "curves/knot_vector.h"

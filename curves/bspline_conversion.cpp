@@ -124,7 +124,8 @@ BSplineCurve<Dim> elevate_degree(const BSplineCurve<Dim>& curve, int times) {
   for (auto& piece : pieces) piece = elevate_degree(piece, times);
   std::vector<int> multiplicities;
   const std::vector<double> breakpoints = knots.breakpoints();
-  for (std::size_t i = 1; i + 1 < breakpoints.size(); ++i) multiplicities.push_back(knots.multiplicity(breakpoints[i]) + times);
+  for (std::size_t i = 1; i + 1 < breakpoints.size(); ++i)
+    multiplicities.push_back(knots.multiplicity(breakpoints[i]) + times);
   return join_pieces(pieces, multiplicities);
 }
 
@@ -133,18 +134,18 @@ NurbsCurve<Dim> elevate_degree(const NurbsCurve<Dim>& curve, int times) {
   return NurbsCurve<Dim>(elevate_degree(curve.homogeneous(), times));
 }
 
-#define PATCHWORK_INSTANTIATE(D)                                                                   \
-  template BezierCurve<D> bezier_piece(const BSplineCurve<D>&, int);                               \
-  template std::vector<BezierCurve<D>> bezier_pieces(const BSplineCurve<D>&);                      \
-  template CompositeCurve<D> to_composite(const BSplineCurve<D>&);                                 \
-  template BSplineCurve<D> to_bspline(const CompositeCurve<D>&, double);                           \
+#define PATCHWORK_INSTANTIATE(D)                                              \
+  template BezierCurve<D> bezier_piece(const BSplineCurve<D>&, int);          \
+  template std::vector<BezierCurve<D>> bezier_pieces(const BSplineCurve<D>&); \
+  template CompositeCurve<D> to_composite(const BSplineCurve<D>&);            \
+  template BSplineCurve<D> to_bspline(const CompositeCurve<D>&, double);      \
   template BSplineCurve<D> elevate_degree(const BSplineCurve<D>&, int);
 PATCHWORK_FOR_EACH_CURVE_DIM(PATCHWORK_INSTANTIATE)
 #undef PATCHWORK_INSTANTIATE
 
-#define PATCHWORK_INSTANTIATE(D)                                                                   \
-  template RationalBezierCurve<D> bezier_piece(const NurbsCurve<D>&, int);                         \
-  template std::vector<RationalBezierCurve<D>> bezier_pieces(const NurbsCurve<D>&);                \
+#define PATCHWORK_INSTANTIATE(D)                                                    \
+  template RationalBezierCurve<D> bezier_piece(const NurbsCurve<D>&, int);          \
+  template std::vector<RationalBezierCurve<D>> bezier_pieces(const NurbsCurve<D>&); \
   template NurbsCurve<D> elevate_degree(const NurbsCurve<D>&, int);
 PATCHWORK_INSTANTIATE(2)
 PATCHWORK_INSTANTIATE(3)

@@ -38,7 +38,8 @@ Point<Dim> de_boor(const KnotVector& knots, const std::vector<Point<Dim>>& P, in
     for (int j = p; j >= r; --j) {
       const double lo = knots[s - p + j];
       const double alpha = (t - lo) / (knots[s + j + 1 - r] - lo);
-      d[static_cast<std::size_t>(j)] = (1.0 - alpha) * d[static_cast<std::size_t>(j) - 1] + alpha * d[static_cast<std::size_t>(j)];
+      d[static_cast<std::size_t>(j)] =
+          (1.0 - alpha) * d[static_cast<std::size_t>(j) - 1] + alpha * d[static_cast<std::size_t>(j)];
     }
   }
   return d[static_cast<std::size_t>(p)];
@@ -181,24 +182,23 @@ NurbsCurve<Dim> periodic_curve(int degree, const std::vector<Point<Dim>>& polygo
   return NurbsCurve<Dim>(std::move(knots), wrapped<Dim>(degree, polygon), std::move(wrapped_weights));
 }
 
-#define PATCHWORK_INSTANTIATE(D)                                                                     \
-  template class BSplineCurve<D>;                                                                    \
-  template Point<D> blossom(const BSplineCurve<D>&, int, std::span<const double>);                   \
-  template Point<D> derivative(const BSplineCurve<D>&, double, int);                                 \
-  template std::vector<Point<D>> derivatives(const BSplineCurve<D>&, double, int);                   \
-  template BSplineCurve<D> derivative_curve(const BSplineCurve<D>&);                                 \
-  template Point<D> tangent(const BSplineCurve<D>&, double);                                         \
+#define PATCHWORK_INSTANTIATE(D)                                                   \
+  template class BSplineCurve<D>;                                                  \
+  template Point<D> blossom(const BSplineCurve<D>&, int, std::span<const double>); \
+  template Point<D> derivative(const BSplineCurve<D>&, double, int);               \
+  template std::vector<Point<D>> derivatives(const BSplineCurve<D>&, double, int); \
+  template BSplineCurve<D> derivative_curve(const BSplineCurve<D>&);               \
+  template Point<D> tangent(const BSplineCurve<D>&, double);                       \
   template BSplineCurve<D> periodic_curve(int, const std::vector<Point<D>>&, double, double);
 PATCHWORK_FOR_EACH_CURVE_DIM(PATCHWORK_INSTANTIATE)
 #undef PATCHWORK_INSTANTIATE
 
-#define PATCHWORK_INSTANTIATE(D)                                                                     \
-  template class NurbsCurve<D>;                                                                      \
-  template Point<D> derivative(const NurbsCurve<D>&, double, int);                                   \
-  template std::vector<Point<D>> derivatives(const NurbsCurve<D>&, double, int);                     \
-  template Point<D> tangent(const NurbsCurve<D>&, double);                                           \
-  template NurbsCurve<D> periodic_curve(int, const std::vector<Point<D>>&, const std::vector<double>&, double, \
-                                        double);
+#define PATCHWORK_INSTANTIATE(D)                                                 \
+  template class NurbsCurve<D>;                                                  \
+  template Point<D> derivative(const NurbsCurve<D>&, double, int);               \
+  template std::vector<Point<D>> derivatives(const NurbsCurve<D>&, double, int); \
+  template Point<D> tangent(const NurbsCurve<D>&, double);                       \
+  template NurbsCurve<D> periodic_curve(int, const std::vector<Point<D>>&, const std::vector<double>&, double, double);
 PATCHWORK_INSTANTIATE(2)
 PATCHWORK_INSTANTIATE(3)
 #undef PATCHWORK_INSTANTIATE

@@ -148,12 +148,11 @@ Point<Dim> tangent(const NurbsCurve<Dim>& curve, double u);
 /// end): control points Q_0..Q_{k-1}, Q_0..Q_{p-1} on periodic_knots(p, k, a, b); C(a) = C(b)
 /// with C^(p-1) there. \throws InvalidInput as periodic_knots, or if a point is not finite.
 template <int Dim>
-BSplineCurve<Dim> periodic_curve(int degree, const std::vector<Point<Dim>>& polygon, double a = 0.0,
-                                 double b = 1.0);
+BSplineCurve<Dim> periodic_curve(int degree, const std::vector<Point<Dim>>& polygon, double a = 0.0, double b = 1.0);
 
 /// The closed rational curve over the polygon with weights (wrapped as the points).
 template <int Dim>
-NurbsCurve<Dim> periodic_curve(int degree, const std::vector<Point<Dim>>& polygon,
-                               const std::vector<double>& weights, double a = 0.0, double b = 1.0);
+NurbsCurve<Dim> periodic_curve(int degree, const std::vector<Point<Dim>>& polygon, const std::vector<double>& weights,
+                               double a = 0.0, double b = 1.0);
 
 }  // namespace patchwork

@@ -62,16 +62,16 @@ Box<Dim> control_box(const NurbsCurve<Dim>& curve) {
   return box;
 }
 
-#define PATCHWORK_INSTANTIATE(D)                                   \
-  template ArcLength arc_length(const BSplineCurve<D>&, double);   \
-  template Box<D> bounding_box(const BSplineCurve<D>&);            \
+#define PATCHWORK_INSTANTIATE(D)                                 \
+  template ArcLength arc_length(const BSplineCurve<D>&, double); \
+  template Box<D> bounding_box(const BSplineCurve<D>&);          \
   template Box<D> control_box(const BSplineCurve<D>&);
 PATCHWORK_FOR_EACH_CURVE_DIM(PATCHWORK_INSTANTIATE)
 #undef PATCHWORK_INSTANTIATE
 
-#define PATCHWORK_INSTANTIATE(D)                                   \
-  template ArcLength arc_length(const NurbsCurve<D>&, double);     \
-  template Box<D> bounding_box(const NurbsCurve<D>&);              \
+#define PATCHWORK_INSTANTIATE(D)                               \
+  template ArcLength arc_length(const NurbsCurve<D>&, double); \
+  template Box<D> bounding_box(const NurbsCurve<D>&);          \
   template Box<D> control_box(const NurbsCurve<D>&);
 PATCHWORK_INSTANTIATE(2)
 PATCHWORK_INSTANTIATE(3)

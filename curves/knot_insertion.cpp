@@ -59,8 +59,8 @@ template <int Dim>
 void check_insertion(const char* function, const BSplineCurve<Dim>& curve, double u, int times) {
   detail::check_parameter(function, u);
   if (u < curve.a() || u > curve.b()) {
-    throw InvalidInput(detail::message(function, ": u = ", u, " is outside the valid range [", curve.a(), ", ",
-                                       curve.b(), "]"));
+    throw InvalidInput(
+        detail::message(function, ": u = ", u, " is outside the valid range [", curve.a(), ", ", curve.b(), "]"));
   }
   if (times < 0) throw InvalidInput(detail::message(function, ": times = ", times, " is negative"));
   const int s = curve.knot_vector().multiplicity(u);
@@ -113,7 +113,8 @@ double homogeneous_distance(const BSplineCurve<Dim>& original, const BSplineCurv
   for (std::size_t i = 0; i < original.control_points().size(); ++i) {
     d = std::max(d, (original.control_points()[i] - reconstructed.control_points()[i]).norm());
   }
-  const double scale = std::max(largest_norm<Dim>(original.control_points()), largest_norm<Dim>(candidate.control_points()));
+  const double scale =
+      std::max(largest_norm<Dim>(original.control_points()), largest_norm<Dim>(candidate.control_points()));
   return d + 4.0 * (times + 1) * Dim * std::numeric_limits<double>::epsilon() * scale;
 }
 
@@ -125,7 +126,8 @@ void check_removal(const char* function, const KnotVector& knots, double u, int 
                                        ", ", knots.b(), ")"));
   }
   if (times < 1 || times > s) {
-    throw InvalidInput(detail::message(function, ": times = ", times, " is not in [1, ", s, "] (the multiplicity of ", u, ")"));
+    throw InvalidInput(
+        detail::message(function, ": times = ", times, " is not in [1, ", s, "] (the multiplicity of ", u, ")"));
   }
   if (std::isnan(tolerance) || tolerance < 0.0) {
     throw InvalidInput(detail::message(function, ": tolerance ", tolerance, " is negative or NaN"));
@@ -194,7 +196,8 @@ template <int Dim>
 KnotRemoval<NurbsCurve<Dim>> remove_knot(const NurbsCurve<Dim>& curve, double u, int times, double tolerance) {
   check_removal("remove_knot", curve.knot_vector(), u, times, tolerance);
   double largest_point = 0.0;
-  for (int i = 0; i < curve.control_point_count(); ++i) largest_point = std::max(largest_point, curve.control_point(i).norm());
+  for (int i = 0; i < curve.control_point_count(); ++i)
+    largest_point = std::max(largest_point, curve.control_point(i).norm());
   const auto& H = curve.homogeneous();
   auto removal = remove_within<Dim + 1>(H, u, times, tolerance, [&](const BSplineCurve<Dim + 1>& candidate, int t) {
     double smallest_weight = std::numeric_limits<double>::infinity();
@@ -205,16 +208,16 @@ KnotRemoval<NurbsCurve<Dim>> remove_knot(const NurbsCurve<Dim>& curve, double u,
   return {NurbsCurve<Dim>(std::move(removal.curve)), removal.removed, removal.bound};
 }
 
-#define PATCHWORK_INSTANTIATE(D)                                                                        \
-  template BSplineCurve<D> insert_knot(const BSplineCurve<D>&, double, int);                            \
-  template BSplineCurve<D> refine_knots(const BSplineCurve<D>&, std::span<const double>);               \
+#define PATCHWORK_INSTANTIATE(D)                                                          \
+  template BSplineCurve<D> insert_knot(const BSplineCurve<D>&, double, int);              \
+  template BSplineCurve<D> refine_knots(const BSplineCurve<D>&, std::span<const double>); \
   template KnotRemoval<BSplineCurve<D>> remove_knot(const BSplineCurve<D>&, double, int, double);
 PATCHWORK_FOR_EACH_CURVE_DIM(PATCHWORK_INSTANTIATE)
 #undef PATCHWORK_INSTANTIATE
 
-#define PATCHWORK_INSTANTIATE(D)                                                                        \
-  template NurbsCurve<D> insert_knot(const NurbsCurve<D>&, double, int);                                \
-  template NurbsCurve<D> refine_knots(const NurbsCurve<D>&, std::span<const double>);                   \
+#define PATCHWORK_INSTANTIATE(D)                                                      \
+  template NurbsCurve<D> insert_knot(const NurbsCurve<D>&, double, int);              \
+  template NurbsCurve<D> refine_knots(const NurbsCurve<D>&, std::span<const double>); \
   template KnotRemoval<NurbsCurve<D>> remove_knot(const NurbsCurve<D>&, double, int, double);
 PATCHWORK_INSTANTIATE(2)
 PATCHWORK_INSTANTIATE(3)

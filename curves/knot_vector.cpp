@@ -18,8 +18,8 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), knot
   }
   for (int i = 0; i < count; ++i) {
     if (!std::isfinite(knots_[static_cast<std::size_t>(i)])) {
-      throw InvalidInput(detail::message("KnotVector: knot ", i, " = ", knots_[static_cast<std::size_t>(i)],
-                                         " is not finite"));
+      throw InvalidInput(
+          detail::message("KnotVector: knot ", i, " = ", knots_[static_cast<std::size_t>(i)], " is not finite"));
     }
     if (i > 0 && knots_[static_cast<std::size_t>(i)] < knots_[static_cast<std::size_t>(i) - 1]) {
       throw InvalidInput(detail::message("KnotVector: knot ", i, " = ", knots_[static_cast<std::size_t>(i)],
@@ -47,7 +47,8 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), knot
 int KnotVector::span(double u) const {
   detail::check_parameter("KnotVector::span", u);
   if (u < a() || u > b()) {
-    throw InvalidInput(detail::message("KnotVector::span: u = ", u, " is outside the valid range [", a(), ", ", b(), "]"));
+    throw InvalidInput(
+        detail::message("KnotVector::span: u = ", u, " is outside the valid range [", a(), ", ", b(), "]"));
   }
   const int n = control_point_count() - 1;
   const auto first = knots_.begin() + p_;
@@ -87,9 +88,7 @@ std::vector<int> KnotVector::breakpoint_continuity() const {
   return orders;
 }
 
-bool KnotVector::is_clamped() const {
-  return knots_[0] == a() && knots_.back() == b();
-}
+bool KnotVector::is_clamped() const { return knots_[0] == a() && knots_.back() == b(); }
 
 namespace {
 
@@ -133,7 +132,8 @@ KnotVector uniform_knots(int degree, int control_points, double a, double b) {
 
 KnotVector periodic_knots(int degree, int polygon_points, double a, double b) {
   if (polygon_points < 2) {
-    throw InvalidInput(detail::message("periodic_knots: a closed polygon of ", polygon_points, " points, need at least 2"));
+    throw InvalidInput(
+        detail::message("periodic_knots: a closed polygon of ", polygon_points, " points, need at least 2"));
   }
   return uniform_knots(degree, polygon_points + degree, a, b);
 }

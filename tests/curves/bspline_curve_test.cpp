@@ -53,7 +53,8 @@ RC_GTEST_PROP(BSplineCurve, DeBoorMatchesTheExactBasisSum, ()) {
   const double u = *bspline_gen::parameter(curve.knot_vector());
   const auto exact = exact_bspline::evaluate(curve, mpq_class(u));
   // de Boor is p levels of convex combinations: gamma_{3p} relative to the largest point.
-  RC_ASSERT(exact_bspline::distance<3>(curve.evaluate(u), exact) <= 2.0 * gamma(3 * curve.degree() + 3) * exact_bspline::scale(curve));
+  RC_ASSERT(exact_bspline::distance<3>(curve.evaluate(u), exact) <=
+            2.0 * gamma(3 * curve.degree() + 3) * exact_bspline::scale(curve));
 }
 
 RC_GTEST_PROP(BSplineCurve, ExtractedPiecesAreTheCurveExactly, ()) {
@@ -82,8 +83,8 @@ RC_GTEST_PROP(BSplineCurve, DerivativesMatchTheExactRecursionAndThePieces, ()) {
   const auto piece = bezier_piece(curve, curve.knot_vector().span(u));
   for (int k = 0; k <= p + 1; ++k) {
     const double scale = std::pow(16.0 * p, k) * exact_bspline::scale(curve);
-    RC_ASSERT(exact_bspline::distance<2>(d[static_cast<std::size_t>(k)], exact_bspline::evaluate(curve, mpq_class(u), k)) <=
-              1e-12 * scale);
+    RC_ASSERT(exact_bspline::distance<2>(d[static_cast<std::size_t>(k)],
+                                         exact_bspline::evaluate(curve, mpq_class(u), k)) <= 1e-12 * scale);
     RC_ASSERT((d[static_cast<std::size_t>(k)] - derivative(piece, u, k)).norm() <= 1e-10 * scale);
   }
   const std::vector<int> orders = curve.knot_vector().breakpoint_continuity();
@@ -112,7 +113,8 @@ RC_GTEST_PROP(NurbsCurve, DerivativesMatchTheExactQuotientRule, ()) {
     ExactPoint<2> numerator{H[static_cast<std::size_t>(k)][0], H[static_cast<std::size_t>(k)][1]};
     for (int j = 1; j <= k; ++j) {
       for (std::size_t c = 0; c < 2; ++c) {
-        numerator[c] -= mpq_class(exact_binomial(k, j)) * H[static_cast<std::size_t>(j)][2] * C[static_cast<std::size_t>(k - j)][c];
+        numerator[c] -=
+            mpq_class(exact_binomial(k, j)) * H[static_cast<std::size_t>(j)][2] * C[static_cast<std::size_t>(k - j)][c];
       }
     }
     for (auto& x : numerator) x /= H[0][2];
@@ -123,7 +125,8 @@ RC_GTEST_PROP(NurbsCurve, DerivativesMatchTheExactQuotientRule, ()) {
   }
   // The rational Bezier piece of the span agrees (its derivatives are tested on their own).
   const auto piece = bezier_piece(curve, curve.knot_vector().span(u));
-  RC_ASSERT((d.back() - derivative(piece, u, order)).norm() <= 1e-9 * std::pow(128.0 * curve.degree(), order) * largest);
+  RC_ASSERT((d.back() - derivative(piece, u, order)).norm() <=
+            1e-9 * std::pow(128.0 * curve.degree(), order) * largest);
 }
 
 TEST(NurbsCurve, CircleLiesOnTheUnitCircle) {

@@ -54,7 +54,8 @@ ExactPoint<Dim> evaluate(const BSplineCurve<Dim>& curve, const mpq_class& u, int
   for (auto& c : sum) c = 0;
   for (int i = s - p; i <= s; ++i) {
     const mpq_class N = basis(U, s, i, p, u, k);
-    for (int c = 0; c < Dim; ++c) sum[static_cast<std::size_t>(c)] += N * mpq_class(curve.control_points()[static_cast<std::size_t>(i)][c]);
+    for (int c = 0; c < Dim; ++c)
+      sum[static_cast<std::size_t>(c)] += N * mpq_class(curve.control_points()[static_cast<std::size_t>(i)][c]);
   }
   return sum;
 }
@@ -90,15 +91,18 @@ ExactPoint<Dim> blossom(const BSplineCurve<Dim>& curve, int s, const std::vector
   std::vector<ExactPoint<Dim>> d;
   for (int j = 0; j <= p; ++j) {
     ExactPoint<Dim> point;
-    for (int c = 0; c < Dim; ++c) point[static_cast<std::size_t>(c)] = curve.control_points()[static_cast<std::size_t>(s - p + j)][c];
+    for (int c = 0; c < Dim; ++c)
+      point[static_cast<std::size_t>(c)] = curve.control_points()[static_cast<std::size_t>(s - p + j)][c];
     d.push_back(point);
   }
   for (int r = 1; r <= p; ++r) {
     for (int j = p; j >= r; --j) {
       const mpq_class& lo = U[static_cast<std::size_t>(s - p + j)];
-      const mpq_class alpha = (t[static_cast<std::size_t>(r) - 1] - lo) / (U[static_cast<std::size_t>(s + j + 1 - r)] - lo);
+      const mpq_class alpha =
+          (t[static_cast<std::size_t>(r) - 1] - lo) / (U[static_cast<std::size_t>(s + j + 1 - r)] - lo);
       for (std::size_t c = 0; c < Dim; ++c) {
-        d[static_cast<std::size_t>(j)][c] = (1 - alpha) * d[static_cast<std::size_t>(j) - 1][c] + alpha * d[static_cast<std::size_t>(j)][c];
+        d[static_cast<std::size_t>(j)][c] =
+            (1 - alpha) * d[static_cast<std::size_t>(j) - 1][c] + alpha * d[static_cast<std::size_t>(j)][c];
       }
     }
   }

@@ -77,7 +77,8 @@ inline rc::Gen<KnotVector> knot_vector(int min_degree = 1, int max_degree = 5, i
 
 /// A B-spline curve on a random knot vector, coordinates in [-10, 10].
 template <int Dim>
-rc::Gen<BSplineCurve<Dim>> bspline_curve(int min_degree = 1, int max_degree = 5, int max_groups = 5, int min_groups = 0) {
+rc::Gen<BSplineCurve<Dim>> bspline_curve(int min_degree = 1, int max_degree = 5, int max_groups = 5,
+                                         int min_groups = 0) {
   return rc::gen::mapcat(knot_vector(min_degree, max_degree, max_groups, min_groups), [](const KnotVector& knots) {
     return rc::gen::map(curve_gen::control_points<Dim>(knots.control_point_count() - 1),
                         [knots](std::vector<Point<Dim>> P) { return BSplineCurve<Dim>(knots, std::move(P)); });
@@ -87,13 +88,14 @@ rc::Gen<BSplineCurve<Dim>> bspline_curve(int min_degree = 1, int max_degree = 5,
 /// A NURBS curve on a random knot vector, weights in [1/4, 4].
 template <int Dim>
 rc::Gen<NurbsCurve<Dim>> nurbs_curve(int min_degree = 1, int max_degree = 5, int max_groups = 5, int min_groups = 0) {
-  return rc::gen::mapcat(bspline_curve<Dim>(min_degree, max_degree, max_groups, min_groups), [](const BSplineCurve<Dim>& curve) {
-    const auto count = curve.control_points().size();
-    return rc::gen::map(rc::gen::container<std::vector<double>>(count, curve_gen::coordinate(0.25, 4.0)),
-                        [curve](std::vector<double> w) {
-                          return NurbsCurve<Dim>(curve.knot_vector(), curve.control_points(), std::move(w));
-                        });
-  });
+  return rc::gen::mapcat(
+      bspline_curve<Dim>(min_degree, max_degree, max_groups, min_groups), [](const BSplineCurve<Dim>& curve) {
+        const auto count = curve.control_points().size();
+        return rc::gen::map(rc::gen::container<std::vector<double>>(count, curve_gen::coordinate(0.25, 4.0)),
+                            [curve](std::vector<double> w) {
+                              return NurbsCurve<Dim>(curve.knot_vector(), curve.control_points(), std::move(w));
+                            });
+      });
 }
 
 /// A parameter in the valid range [a, b] of a curve: a, b or an interior knot in one case of

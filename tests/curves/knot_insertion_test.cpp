@@ -58,15 +58,16 @@ RC_GTEST_PROP(KnotInsertion, ControlPointsAreTheExactBlossoms, ()) {
     RC_ASSERT(exact_bspline::distance<2>(inserted.control_points()[i], exact[i]) <= tolerance);
   }
   // The curve is unchanged: the rounded new points, evaluated exactly, at a rational parameter.
-  const mpq_class t = mpq_class(curve.a()) + (mpq_class(curve.b()) - mpq_class(curve.a())) * *rc::gen::inRange(0, 8) / 7;
+  const mpq_class t =
+      mpq_class(curve.a()) + (mpq_class(curve.b()) - mpq_class(curve.a())) * *rc::gen::inRange(0, 8) / 7;
   RC_ASSERT(exact_bspline::distance<2>(exact_bspline::evaluate(inserted, t), exact_bspline::evaluate(curve, t)) <=
             tolerance);
 }
 
 RC_GTEST_PROP(KnotInsertion, RefinementKeepsTheCurve, ()) {
   const auto curve = *bspline_gen::bspline_curve<3>(1, 5);
-  const auto extra = *rc::gen::container<std::vector<double>>(
-      static_cast<std::size_t>(*rc::gen::inRange(1, 7)), curve_gen::coordinate(curve.a(), curve.b()));
+  const auto extra = *rc::gen::container<std::vector<double>>(static_cast<std::size_t>(*rc::gen::inRange(1, 7)),
+                                                              curve_gen::coordinate(curve.a(), curve.b()));
   std::vector<double> all = extra;
   all.insert(all.end(), curve.knot_vector().knots().begin(), curve.knot_vector().knots().end());
   for (double u : extra) RC_PRE(static_cast<int>(std::count(all.begin(), all.end(), u)) <= curve.degree());
@@ -166,8 +167,8 @@ namespace {
 
 RC_GTEST_PROP(NurbsCurve, RefinementAndElevationKeepTheCurve, ()) {
   const auto curve = *bspline_gen::nurbs_curve<3>(1, 4, 4);
-  const auto extra = *rc::gen::container<std::vector<double>>(
-      static_cast<std::size_t>(*rc::gen::inRange(1, 5)), curve_gen::coordinate(curve.a(), curve.b()));
+  const auto extra = *rc::gen::container<std::vector<double>>(static_cast<std::size_t>(*rc::gen::inRange(1, 5)),
+                                                              curve_gen::coordinate(curve.a(), curve.b()));
   for (double u : extra) RC_PRE(curve.knot_vector().multiplicity(u) == 0);
   RC_PRE(std::adjacent_find(extra.begin(), extra.end()) == extra.end());
   const double scale = testing::max_norm(curve.homogeneous().control_points());

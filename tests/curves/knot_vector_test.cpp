@@ -101,7 +101,8 @@ RC_GTEST_PROP(BSplineBasis, PartitionOfUnityNonNegativeAndExact, ()) {
     RC_ASSERT(N[static_cast<std::size_t>(r)] >= 0.0);
     sum += N[static_cast<std::size_t>(r)];
     const mpq_class exact = exact_bspline::basis(U, s, s - knots.degree() + r, knots.degree(), mpq_class(u), 0);
-    RC_ASSERT(std::abs(mpq_class(mpq_class(N[static_cast<std::size_t>(r)]) - exact).get_d()) <= gamma(4 * knots.degree() + 2));
+    RC_ASSERT(std::abs(mpq_class(mpq_class(N[static_cast<std::size_t>(r)]) - exact).get_d()) <=
+              gamma(4 * knots.degree() + 2));
   }
   RC_ASSERT(std::abs(sum - 1.0) <= gamma(4 * knots.degree() + 2));
 }
@@ -126,7 +127,8 @@ RC_GTEST_PROP(BSplineBasis, DerivativesMatchTheExactRecursion, ()) {
     // The derivatives of a partition of unity sum to 0.
     if (k > 0) RC_ASSERT(std::abs(sum) <= 1e-13 * scale * (p + 1));
   }
-  RC_ASSERT(ders.row(0).transpose().isApprox(Eigen::Map<const Eigen::VectorXd>(basis_functions(knots, u).data(), p + 1)));
+  RC_ASSERT(
+      ders.row(0).transpose().isApprox(Eigen::Map<const Eigen::VectorXd>(basis_functions(knots, u).data(), p + 1)));
 }
 
 }  // namespace
