@@ -129,6 +129,38 @@ RC_GTEST_PROP(NurbsCurve, DerivativesMatchTheExactQuotientRule, ()) {
             1e-9 * std::pow(128.0 * curve.degree(), order) * largest);
 }
 
+RC_GTEST_PROP(BSplineCurve, BlossomIsSymmetricMultiAffineAndThePointOnTheDiagonal, ()) {
+  const auto curve = *bspline_gen::bspline_curve<2>(1, 5);
+  const int p = curve.degree();
+  const KnotVector& knots = curve.knot_vector();
+  const int s = knots.span(*bspline_gen::parameter(knots));
+  const auto argument = curve_gen::coordinate(knots[s], knots[s + 1]);
+  std::vector<double> t = *rc::gen::container<std::vector<double>>(static_cast<std::size_t>(p), argument);
+  const double tolerance = 1e-12 * exact_bspline::scale(curve);
+  const Vec2 f = blossom(curve, s, t);
+  std::vector<double> reversed(t.rbegin(), t.rend());
+  RC_ASSERT((blossom(curve, s, reversed) - f).norm() <= tolerance);
+  // Affine in the first argument: f(x, ...) and f(y, ...) give f((x + y)/2, ...) halfway.
+  const double x = *argument;
+  const double y = *argument;
+  std::vector<double> tx = t, ty = t, tm = t;
+  tx[0] = x;
+  ty[0] = y;
+  tm[0] = 0.5 * (x + y);
+  RC_ASSERT((blossom(curve, s, tm) - 0.5 * (blossom(curve, s, tx) + blossom(curve, s, ty))).norm() <= tolerance);
+  const double u = *argument;
+  RC_ASSERT((blossom(curve, s, std::vector<double>(static_cast<std::size_t>(p), u)) - curve.evaluate(u)).norm() <=
+            tolerance);
+}
+
+RC_GTEST_PROP(BSplineCurve, TangentIsTheUnitFirstDerivative, ()) {
+  const auto curve = *bspline_gen::bspline_curve<3>(1, 5);
+  const double u = *bspline_gen::parameter(curve.knot_vector());
+  const Vec3 d = derivative(curve, u, 1);
+  RC_PRE(d.norm() > 1e-6 * exact_bspline::scale(curve));
+  RC_ASSERT((tangent(curve, u) - d / d.norm()).norm() <= 1e-9);
+}
+
 TEST(NurbsCurve, CircleLiesOnTheUnitCircle) {
   const NurbsCurve2 circle = unit_circle();
   double worst = 0.0;
