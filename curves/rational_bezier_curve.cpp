@@ -6,6 +6,7 @@
 #include "core/errors.h"
 #include "curves/curve_checks.h"
 #include "curves/degree.h"
+#include "curves/homogeneous.h"
 #include "curves/limit_tangent.h"
 #include "curves/subdivision.h"
 
@@ -15,28 +16,12 @@ namespace {
 template <int Dim>
 BezierCurve<Dim + 1> homogenize(const char* function, const std::vector<Point<Dim>>& points,
                                 const std::vector<double>& weights, double a, double b) {
-  detail::check_control_points(function, points);
-  if (weights.size() != points.size()) {
-    throw InvalidInput(detail::message(function, ": ", points.size(), " control points but ", weights.size(), " weights"));
-  }
-  std::vector<Point<Dim + 1>> H(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!std::isfinite(weights[i]) || !(weights[i] > 0.0)) {
-      throw InvalidInput(detail::message(function, ": weight ", i, " = ", weights[i], " is not positive and finite"));
-    }
-    H[i] << weights[i] * points[i], weights[i];
-  }
-  return BezierCurve<Dim + 1>(std::move(H), a, b);
+  return BezierCurve<Dim + 1>(detail::homogeneous_points<Dim>(function, points, weights), a, b);
 }
 
 template <int Dim>
 const BezierCurve<Dim + 1>& check_weights(const BezierCurve<Dim + 1>& homogeneous) {
-  const auto& H = homogeneous.control_points();
-  for (std::size_t i = 0; i < H.size(); ++i) {
-    if (!(H[i][Dim] > 0.0)) {
-      throw InvalidInput(detail::message("RationalBezierCurve: weight ", i, " = ", H[i][Dim], " is not positive"));
-    }
-  }
+  detail::check_homogeneous_weights<Dim>("RationalBezierCurve", homogeneous.control_points());
   return homogeneous;
 }
 
@@ -53,29 +38,19 @@ RationalBezierCurve<Dim>::RationalBezierCurve(Homogeneous homogeneous)
 
 template <int Dim>
 typename RationalBezierCurve<Dim>::Point RationalBezierCurve<Dim>::control_point(int i) const {
-  const auto& h = homogeneous_.control_points().at(static_cast<std::size_t>(i));
-  return h.template head<Dim>() / h[Dim];
+  return detail::projected<Dim>(homogeneous_.control_points().at(static_cast<std::size_t>(i)));
 }
 
 template <int Dim>
 typename RationalBezierCurve<Dim>::Point RationalBezierCurve<Dim>::evaluate(double t) const {
-  const patchwork::Point<Dim + 1> h = homogeneous_.evaluate(t);
-  return h.template head<Dim>() / h[Dim];
+  return detail::projected<Dim>(homogeneous_.evaluate(t));
 }
 
 // C, C', ..., C^(k) at t by Leibniz's rule on C = H / w.
 template <int Dim>
 static std::vector<Point<Dim>> rational_derivatives(const RationalBezierCurve<Dim>& curve, double t, int k) {
   if (k < 0) throw InvalidInput(detail::message("derivative: order ", k, " is negative"));
-  const std::vector<Point<Dim + 1>> H = derivatives(curve.homogeneous(), t, k);
-  const double w = H[0][Dim];
-  std::vector<Point<Dim>> C(static_cast<std::size_t>(k) + 1);
-  for (int order = 0; order <= k; ++order) {
-    Point<Dim> numerator = H[order].template head<Dim>();
-    for (int j = 1; j <= order; ++j) numerator -= binomial(order, j) * H[j][Dim] * C[order - j];
-    C[order] = numerator / w;
-  }
-  return C;
+  return detail::quotient_derivatives<Dim>(derivatives(curve.homogeneous(), t, k));
 }
 
 template <int Dim>

@@ -19,6 +19,7 @@ namespace patchwork {
 namespace {
 
 using namespace testing;
+using testing::max_norm;  // beside arc_length_test's overload for curves (one unity translation unit)
 
 template <int Dim>
 ExactPoint<Dim> exact(const Point<Dim>& p) {
@@ -32,16 +33,6 @@ std::vector<ExactPoint<Dim>> exact(const std::vector<Point<Dim>>& points) {
   std::vector<ExactPoint<Dim>> result;
   for (const auto& p : points) result.push_back(exact<Dim>(p));
   return result;
-}
-
-template <int Dim>
-double distance(const Point<Dim>& p, const ExactPoint<Dim>& q) {
-  double sum = 0.0;
-  for (int d = 0; d < Dim; ++d) {
-    const double difference = mpq_class(mpq_class(p[d]) - q[static_cast<std::size_t>(d)]).get_d();
-    sum += difference * difference;
-  }
-  return std::sqrt(sum);
 }
 
 template <int Dim>
@@ -104,13 +95,6 @@ ExactPoint<Dim> exact_blossom(std::vector<ExactPoint<Dim>> P, const std::vector<
     }
   }
   return P[0];
-}
-
-template <int Dim>
-double max_norm(const std::vector<Point<Dim>>& points) {
-  double result = 0.0;
-  for (const auto& p : points) result = std::max(result, p.norm());
-  return result;
 }
 
 template <int Dim>

@@ -79,6 +79,25 @@ mpq_class max_difference(const std::vector<Point<Dim>>& Q, const std::vector<Exa
   return worst;
 }
 
+/// Largest norm of a point list.
+template <int Dim>
+double max_norm(const std::vector<Point<Dim>>& points) {
+  double result = 0.0;
+  for (const auto& p : points) result = std::max(result, p.norm());
+  return result;
+}
+
+/// |p - q| for a double point and an exact one (each coordinate difference exact, then rounded).
+template <int Dim>
+double distance(const Point<Dim>& p, const ExactPoint<Dim>& q) {
+  double sum = 0.0;
+  for (int d = 0; d < Dim; ++d) {
+    const double difference = mpq_class(mpq_class(p[d]) - q[static_cast<std::size_t>(d)]).get_d();
+    sum += difference * difference;
+  }
+  return std::sqrt(sum);
+}
+
 /// A RapidCheck-drawn number in [0, 1] on a grid of 10^-6 (inside a property only).
 inline double random_unit() { return *rc::gen::inRange(0, 1000001) / 1e6; }
 
