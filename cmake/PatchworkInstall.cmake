@@ -21,7 +21,8 @@ set(patchwork_include_dir "${CMAKE_INSTALL_INCLUDEDIR}/patchwork")
 # Headers of installed modules that are not part of the installed API: osd_refiner.h is shared
 # by subdivision's .cpp files and includes OpenSubdiv, which no public header may; the
 # tessellator's stages and the patch-edge helpers are shared by surfaces' .cpp files only.
-set(patchwork_internal_headers subdivision/osd_refiner.h surfaces/tessellator_stages.h surfaces/patch_edge_geometry.h)
+set(patchwork_internal_headers subdivision/osd_refiner.h curves/homogeneous.h surfaces/tessellator_stages.h
+    surfaces/patch_edge_geometry.h)
 
 # What code compiled against the installed libraries must share with them, in place of this
 # build's patchwork_build_flags (assertions and instrumentation are the libraries' own business):
