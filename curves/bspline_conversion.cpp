@@ -134,6 +134,34 @@ NurbsCurve<Dim> elevate_degree(const NurbsCurve<Dim>& curve, int times) {
   return NurbsCurve<Dim>(elevate_degree(curve.homogeneous(), times));
 }
 
+template <int Dim>
+NurbsCurve<Dim> join_rational_pieces(const std::vector<RationalBezierCurve<Dim>>& pieces) {
+  if (pieces.empty()) throw InvalidInput("join_rational_pieces: no pieces");
+  const int p = pieces.front().homogeneous().degree();
+  if (p < 1) throw InvalidInput("join_rational_pieces: pieces of degree 0");
+  const double n = static_cast<double>(pieces.size());
+  std::vector<BezierCurve<Dim + 1>> homogeneous;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const BezierCurve<Dim + 1>& h = pieces[i].homogeneous();
+    if (h.degree() != p) throw InvalidInput(detail::message("join_rational_pieces: piece ", i, " has degree ", h.degree(), ", not ", p));
+    // Scaled so that its first weight is the previous piece's last (the same point, the same
+    // homogeneous point: the C^0 join of the homogeneous curve).
+    std::vector<Point<Dim + 1>> points = h.control_points();
+    if (i > 0) {
+      const Point<Dim + 1>& previous = homogeneous.back().control_points().back();
+      const double scale = previous[Dim] / points.front()[Dim];
+      for (auto& q : points) q *= scale;
+      const Point<Dim> end = previous.template head<Dim>() / previous[Dim];
+      const Point<Dim> start = points.front().template head<Dim>() / points.front()[Dim];
+      if ((end - start).norm() > 1e-12 * std::max({1.0, end.norm(), start.norm()})) {
+        throw InvalidInput(detail::message("join_rational_pieces: piece ", i, " does not start where piece ", i - 1, " ends"));
+      }
+    }
+    homogeneous.emplace_back(std::move(points), static_cast<double>(i) / n, i + 1 == pieces.size() ? 1.0 : (i + 1) / n);
+  }
+  return NurbsCurve<Dim>(join_pieces(homogeneous, std::vector<int>(pieces.size() - 1, p)));
+}
+
 #define PATCHWORK_INSTANTIATE(D)                                              \
   template BezierCurve<D> bezier_piece(const BSplineCurve<D>&, int);          \
   template std::vector<BezierCurve<D>> bezier_pieces(const BSplineCurve<D>&); \
@@ -146,7 +174,8 @@ PATCHWORK_FOR_EACH_CURVE_DIM(PATCHWORK_INSTANTIATE)
 #define PATCHWORK_INSTANTIATE(D)                                                    \
   template RationalBezierCurve<D> bezier_piece(const NurbsCurve<D>&, int);          \
   template std::vector<RationalBezierCurve<D>> bezier_pieces(const NurbsCurve<D>&); \
-  template NurbsCurve<D> elevate_degree(const NurbsCurve<D>&, int);
+  template NurbsCurve<D> elevate_degree(const NurbsCurve<D>&, int);                 \
+  template NurbsCurve<D> join_rational_pieces(const std::vector<RationalBezierCurve<D>>&);
 PATCHWORK_INSTANTIATE(2)
 PATCHWORK_INSTANTIATE(3)
 #undef PATCHWORK_INSTANTIATE

@@ -61,4 +61,13 @@ BSplineCurve<Dim> elevate_degree(const BSplineCurve<Dim>& curve, int times = 1);
 template <int Dim>
 NurbsCurve<Dim> elevate_degree(const NurbsCurve<Dim>& curve, int times = 1);
 
+/// The NURBS curve of rational Bezier pieces of one degree p >= 1 joined end to end, on [0, 1]
+/// with piece i on [i/n, (i+1)/n] and interior knots of multiplicity p (C^0 in the parameter;
+/// each piece's homogeneous points scaled so the joints agree, the curve of each piece
+/// unchanged). circle_arc's pieces give an exact NURBS arc this way.
+/// \throws InvalidInput if there is no piece, the degrees differ or are 0, or a piece does not
+///         start (within 1e-12 relative) where the previous one ends.
+template <int Dim>
+NurbsCurve<Dim> join_rational_pieces(const std::vector<RationalBezierCurve<Dim>>& pieces);
+
 }  // namespace patchwork

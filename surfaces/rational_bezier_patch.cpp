@@ -67,7 +67,13 @@ Vec3 RationalBezierPatch::evaluate(double u, double v) const {
 }
 
 PartialDerivatives<3> partial_derivatives(const RationalBezierPatch& patch, double u, double v, int order) {
-  const PartialDerivatives<4> H = partial_derivatives(patch.homogeneous(), u, v, order);
+  return detail::projected_partial_derivatives(partial_derivatives(patch.homogeneous(), u, v, order));
+}
+
+namespace detail {
+
+PartialDerivatives<3> projected_partial_derivatives(const PartialDerivatives<4>& H) {
+  const int order = H.order();
   PartialDerivatives<3> F(order);
   const double w = H.at(0, 0)[3];
   // Increasing total order: every F term on the right is already known.
@@ -86,6 +92,8 @@ PartialDerivatives<3> partial_derivatives(const RationalBezierPatch& patch, doub
   }
   return F;
 }
+
+}  // namespace detail
 
 std::pair<RationalBezierPatch, RationalBezierPatch> split_u(const RationalBezierPatch& patch, double u) {
   auto [a, b] = split_u(patch.homogeneous(), u);

@@ -48,6 +48,12 @@ class RationalBezierPatch {
 /// All partial derivatives of F with a + b <= order at (u, v).
 PartialDerivatives<3> partial_derivatives(const RationalBezierPatch& patch, double u, double v, int order);
 
+namespace detail {
+/// The partial derivatives of F = H / w from those of the homogeneous H = (w F, w), by the
+/// Leibniz rule of the file comment (shared with NURBS surfaces). \pre H.at(0, 0)[3] > 0.
+PartialDerivatives<3> projected_partial_derivatives(const PartialDerivatives<4>& H);
+}  // namespace detail
+
 // The operations of BezierPatch, on the homogeneous net (exact for the rational surface: de
 // Casteljau and degree elevation of H = (w P, w) are those of F, since F = H / w pointwise).
 

@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "meshes/topology.h"
+#include "surfaces/nurbs_shapes.h"
 #include "surfaces/patch_grid.h"
 #include "surfaces/patch_set.h"
 #include "surfaces/rational_bounds.h"
@@ -207,6 +208,70 @@ TEST(RationalTessellation, GridEvaluationMatchesPointwiseEvaluation) {
       EXPECT_LT((tangents[k] - tangent).norm(), 1e-9) << us[a] << " " << vs[b];
       EXPECT_LT(std::abs(tangents[k].head<3>().dot(normals[k])), 1e-12);
     }
+  }
+}
+
+
+// The NURBS shapes (surfaces/nurbs_shapes.h) through extraction and the tessellator: closed
+// where they should be, every vertex, edge midpoint and centroid within the bound of the
+// implicit surface, exact normals (the sphere's and cone's collapsed rows included).
+TEST(NurbsTessellation, ShapesAreWatertightAndWithinTheTolerance) {
+  struct Shape {
+    const char* name;
+    NurbsSurface surface;
+    std::function<double(const Vec3&)> distance;
+    std::function<Vec3(const Vec3&)> normal;
+    int euler;
+    int boundary_loops;
+  };
+  const double R = 2.0, r = 0.5, h = 1.5;
+  const double slant = std::atan2(1.0, h);  // the cone of radius 1 and height h
+  const std::vector<Shape> shapes = {
+      {"sphere", nurbs_sphere(Vec3::Zero(), 1.0), [](const Vec3& p) { return std::abs(p.norm() - 1.0); },
+       [](const Vec3& p) { return p.normalized(); }, 2, 0},
+      {"torus", nurbs_torus(Vec3::Zero(), R, r), [&](const Vec3& p) { return testing::torus_distance(p, R, r); },
+       [&](const Vec3& p) { return testing::torus_normal(p, R); }, 0, 0},
+      {"cylinder", nurbs_cylinder(Vec3::Zero(), 1.0, h), [](const Vec3& p) { return std::abs(std::hypot(p.x(), p.y()) - 1.0); },
+       [](const Vec3& p) { return Vec3(p.x(), p.y(), 0).normalized(); }, 0, 2},
+      {"cone", nurbs_cone(Vec3::Zero(), 1.0, h),
+       [&](const Vec3& p) { return std::abs((std::hypot(p.x(), p.y()) - (1.0 - p.z() / h)) * std::cos(slant)); },
+       [&](const Vec3& p) {
+         const double rho = std::hypot(p.x(), p.y());
+         // The apex has no one normal (each quarter's limit normal differs); it is skipped.
+         return rho < 1e-12 ? Vec3(Vec3::Zero()) : Vec3(Vec3(h * p.x() / rho, h * p.y() / rho, 1.0).normalized());
+       },
+       1, 1},
+  };
+  for (const Shape& shape : shapes) {
+    SCOPED_TRACE(shape.name);
+    const PatchSet set(bezier_patches(shape.surface).patches);
+    TessellationOptions options;
+    options.tolerance = 1e-3;
+    const Tessellation result = tessellate(set, options);
+    EXPECT_LE(result.error_bound, 1e-3);
+    EXPECT_LE(result.measured_error, result.error_bound);
+    double worst = 0.0, worst_angle = 0.0;
+    const RenderMesh& mesh = result.mesh;
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+      const Vec3 n = shape.normal(mesh.positions[v]);
+      if (n == Vec3::Zero()) continue;
+      worst_angle = std::max(worst_angle, std::atan2(n.cross(mesh.normals[v]).norm(), n.dot(mesh.normals[v])));
+    }
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const Vec3& a = mesh.positions[mesh.indices[3 * t]];
+      const Vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+      const Vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
+      for (const Vec3& p : {a, Vec3((a + b) / 2), Vec3((b + c) / 2), Vec3((c + a) / 2), Vec3((a + b + c) / 3)}) {
+        worst = std::max(worst, shape.distance(p));
+      }
+    }
+    EXPECT_LE(worst, result.error_bound);
+    EXPECT_LT(worst_angle, 1e-7);
+    const TopologyReport topology = analyze(welded_faces(mesh));
+    EXPECT_TRUE(topology.manifold);
+    EXPECT_EQ(topology.components, 1);
+    EXPECT_EQ(topology.euler, shape.euler);
+    EXPECT_EQ(topology.boundary_loops, shape.boundary_loops);
   }
 }
 
