@@ -20,8 +20,8 @@ set(patchwork_cmake_dir "${CMAKE_INSTALL_LIBDIR}/cmake/patchwork")
 set(patchwork_include_dir "${CMAKE_INSTALL_INCLUDEDIR}/patchwork")
 # Headers of installed modules that are not part of the installed API: osd_refiner.h is shared
 # by subdivision's .cpp files and includes OpenSubdiv, which no public header may; obj_syntax.h
-# is what the two OBJ readers share.
-set(patchwork_internal_headers subdivision/osd_refiner.h io/obj_syntax.h)
+# is what the two OBJ readers share, obj_freeform_checks.h the free-form reader and writer.
+set(patchwork_internal_headers subdivision/osd_refiner.h io/obj_syntax.h io/obj_freeform_checks.h)
 
 # What code compiled against the installed libraries must share with them, in place of this
 # build's patchwork_build_flags (assertions and instrumentation are the libraries' own business):
