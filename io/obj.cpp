@@ -23,9 +23,8 @@ using detail::TextToken;
 // other than positions, grouping, and display and rendering attributes (ctech and stech are the
 // free-form ones). Free-form geometry itself is refused (read_obj_freeform reads it).
 constexpr std::string_view ignored_statements[] = {
-    "vt",     "vn",       "vp",       "g",   "o",      "s",      "mg",         "usemtl",    "mtllib", "l",
-    "p",      "bevel",    "c_interp", "d_interp", "lod", "maplib", "usemap", "shadow_obj", "trace_obj", "ctech",
-    "stech",  "call"};
+    "vt",    "vn",       "vp",       "g",   "o",      "s",      "mg",         "usemtl",    "mtllib", "l",     "p",
+    "bevel", "c_interp", "d_interp", "lod", "maplib", "usemap", "shadow_obj", "trace_obj", "ctech",  "stech", "call"};
 
 bool is_ignored(std::string_view keyword) {
   return std::find(std::begin(ignored_statements), std::end(ignored_statements), keyword) !=

@@ -16,16 +16,16 @@
 namespace patchwork {
 namespace {
 
-using detail::message;
-using detail::quoted;
-using detail::TextLines;
-using detail::TextToken;
+using detail::basis_name;
+using detail::direction_name;
 using detail::FreeformPart;
 using detail::FreeformProblem;
 using detail::FreeformRecordView;
-using detail::basis_name;
-using detail::direction_name;
+using detail::message;
+using detail::quoted;
 using detail::record_problem;
+using detail::TextLines;
+using detail::TextToken;
 using detail::view_of;
 
 // ---------------------------------------------------------------------------------------------
@@ -56,9 +56,9 @@ constexpr Refusal refused_statements[] = {
 
 // Display and rendering attributes: nothing of the geometry (ctech and stech are a renderer's
 // tessellation hints; patchwork's tessellator has its own tolerance).
-constexpr std::string_view display_statements[] = {"ctech",    "stech",      "s",         "usemtl", "mtllib",
-                                                   "lod",      "bevel",      "c_interp",  "d_interp",
-                                                   "maplib",   "usemap",     "shadow_obj", "trace_obj"};
+constexpr std::string_view display_statements[] = {"ctech",  "stech",      "s",        "usemtl",   "mtllib",
+                                                   "lod",    "bevel",      "c_interp", "d_interp", "maplib",
+                                                   "usemap", "shadow_obj", "trace_obj"};
 
 // Where a token stood: its column and the physical line (a continuation line of the statement).
 struct Where {
@@ -87,8 +87,8 @@ class FreeformReader {
   FreeformDocument read() {
     for (auto tokens = reader_.next_line(); !tokens.empty(); tokens = reader_.next_line()) statement(tokens);
     if (open_) {
-      reader_.fail_at_end(message("missing 'end' of the ", open_->surface ? "surf" : "curv", " block of line ",
-                                  open_->record.line));
+      reader_.fail_at_end(
+          message("missing 'end' of the ", open_->surface ? "surf" : "curv", " block of line ", open_->record.line));
     }
     if (document_.surfaces.empty() && document_.curves.empty()) {
       reader_.fail_at_end("no free-form curve or surface ('curv' or 'surf') in the file");
@@ -101,7 +101,8 @@ class FreeformReader {
 
   [[noreturn]] void fail_at(std::int64_t line, const Where& at, const std::string& text) const {
     if (at.physical_line != line && at.physical_line != 0) {
-      throw ParseError(reader_.name(), line, at.column, message(text, " (in continuation line ", at.physical_line, ")"));
+      throw ParseError(reader_.name(), line, at.column,
+                       message(text, " (in continuation line ", at.physical_line, ")"));
     }
     throw ParseError(reader_.name(), line, at.column, text);
   }
@@ -189,8 +190,9 @@ class FreeformReader {
       rational_ = rational;
       has_cstype_ = true;
     } else if (type.text == "cardinal" || type.text == "taylor" || type.text == "bmatrix") {
-      reader_.fail(type, message("unsupported statement 'cstype ", type.text,
-                                 "': only bezier and bspline bases are supported (the tessellator evaluates no other)"));
+      reader_.fail(type,
+                   message("unsupported statement 'cstype ", type.text,
+                           "': only bezier and bspline bases are supported (the tessellator evaluates no other)"));
     } else {
       reader_.fail(type, message("unknown cstype ", quoted(type.text), " (expected bezier or bspline)"));
     }
@@ -222,9 +224,8 @@ class FreeformReader {
     }
     const std::size_t range_size = surface ? 4 : 2;
     if (tokens.size() < range_size + 1) {
-      reader_.fail(tokens.back().end_column(),
-                   message(surface ? "expected 'surf u0 u1 v0 v1' and control points"
-                                   : "expected 'curv t0 t1' and control points"));
+      reader_.fail(tokens.back().end_column(), message(surface ? "expected 'surf u0 u1 v0 v1' and control points"
+                                                               : "expected 'curv t0 t1' and control points"));
     }
     OpenRecord block;
     block.surface = surface;
@@ -309,9 +310,16 @@ class FreeformReader {
       check(view_of(surface));
       document_.surfaces.push_back(std::move(surface));
     } else {
-      FreeformCurve curve{surface.name,  surface.basis, surface.rational,       surface.degree_u,
-                          std::move(surface.parameters_u), surface.u0, surface.u1, std::move(surface.points),
-                          std::move(surface.weights), surface.line};
+      FreeformCurve curve{surface.name,
+                          surface.basis,
+                          surface.rational,
+                          surface.degree_u,
+                          std::move(surface.parameters_u),
+                          surface.u0,
+                          surface.u1,
+                          std::move(surface.points),
+                          std::move(surface.weights),
+                          surface.line};
       check(view_of(curve));
       document_.curves.push_back(std::move(curve));
     }
@@ -372,7 +380,6 @@ std::string name_problem(const std::string& name) {
   if (name.back() == '\\') return "ends in '\\' (a line continuation)";
   return {};
 }
-
 
 // Appends the record: its control points, then g (if the name changes), cstype, deg, the curv or
 // surf statement with absolute indices, parm and end. `vertices` counts the v lines so far.
@@ -445,7 +452,8 @@ std::string format_obj_freeform(const FreeformDocument& document) {
   std::string text;
   std::int64_t vertices = 0;
   std::string group;
-  for (const FreeformSurface& surface : document.surfaces) append_record(text, vertices, group, surface.name, view_of(surface));
+  for (const FreeformSurface& surface : document.surfaces)
+    append_record(text, vertices, group, surface.name, view_of(surface));
   for (const FreeformCurve& curve : document.curves) append_record(text, vertices, group, curve.name, view_of(curve));
   return text;
 }

@@ -72,24 +72,24 @@ enum class FreeformBasis { bezier, bspline };
 
 /// A 'curv' record: a curve over [t0, t1].
 struct FreeformCurve {
-  std::string name;                ///< the current g or o name ("" before any)
+  std::string name;  ///< the current g or o name ("" before any)
   FreeformBasis basis = FreeformBasis::bspline;
-  bool rational = false;           ///< cstype rat: weights from the vertices
+  bool rational = false;  ///< cstype rat: weights from the vertices
   int degree = 1;
   std::vector<double> parameters;  ///< parm u: knots (bspline) or breakpoints (bezier)
   double t0 = 0.0;                 ///< the range, within the domain of the parameters
   double t1 = 1.0;
-  std::vector<Vec3> points;        ///< control points, Cartesian
-  std::vector<double> weights;     ///< one per point; all 1 when not rational
-  std::int64_t line = 0;           ///< where the curv statement stands (0 if not read)
+  std::vector<Vec3> points;     ///< control points, Cartesian
+  std::vector<double> weights;  ///< one per point; all 1 when not rational
+  std::int64_t line = 0;        ///< where the curv statement stands (0 if not read)
   bool operator==(const FreeformCurve&) const = default;
 };
 
 /// A 'surf' record: a tensor-product surface over [u0, u1] x [v0, v1].
 struct FreeformSurface {
-  std::string name;                  ///< the current g or o name ("" before any)
+  std::string name;  ///< the current g or o name ("" before any)
   FreeformBasis basis = FreeformBasis::bspline;
-  bool rational = false;             ///< cstype rat: weights from the vertices
+  bool rational = false;  ///< cstype rat: weights from the vertices
   int degree_u = 1;
   int degree_v = 1;
   std::vector<double> parameters_u;  ///< parm u: knots (bspline) or breakpoints (bezier)
@@ -98,9 +98,9 @@ struct FreeformSurface {
   double u1 = 1.0;
   double v0 = 0.0;
   double v1 = 1.0;
-  std::vector<Vec3> points;          ///< count_u x count_v control points, u fastest: P_ij at i + count_u * j
-  std::vector<double> weights;       ///< one per point; all 1 when not rational
-  std::int64_t line = 0;             ///< where the surf statement stands (0 if not read)
+  std::vector<Vec3> points;     ///< count_u x count_v control points, u fastest: P_ij at i + count_u * j
+  std::vector<double> weights;  ///< one per point; all 1 when not rational
+  std::int64_t line = 0;        ///< where the surf statement stands (0 if not read)
   bool operator==(const FreeformSurface&) const = default;
 };
 

@@ -10,15 +10,20 @@
 namespace patchwork {
 namespace detail {
 
-const char* basis_name(FreeformBasis basis) {
-  return basis == FreeformBasis::bezier ? "bezier" : "bspline";
-}
+const char* basis_name(FreeformBasis basis) { return basis == FreeformBasis::bezier ? "bezier" : "bspline"; }
 
 const char* direction_name(int direction) { return direction == 0 ? "u" : "v"; }
 
 FreeformRecordView view_of(const FreeformCurve& curve) {
-  return {"curv",         curve.basis, curve.rational, 1, {curve.degree, 0}, {curve.parameters, {}},
-          {curve.t0, curve.t1, 0.0, 0.0}, curve.points, curve.weights};
+  return {"curv",
+          curve.basis,
+          curve.rational,
+          1,
+          {curve.degree, 0},
+          {curve.parameters, {}},
+          {curve.t0, curve.t1, 0.0, 0.0},
+          curve.points,
+          curve.weights};
 }
 
 FreeformRecordView view_of(const FreeformSurface& surface) {
@@ -47,7 +52,8 @@ std::optional<FreeformProblem> direction_problem(const FreeformRecordView& recor
     return problem(FreeformPart::degree, 0, message("degree ", p, " is not in [1, ", max_obj_freeform_degree, "]"));
   }
   for (std::size_t k = 0; k < b.size(); ++k) {
-    if (!std::isfinite(b[k])) return problem(FreeformPart::parameter, k, message(parm, ": value ", b[k], " is not finite"));
+    if (!std::isfinite(b[k]))
+      return problem(FreeformPart::parameter, k, message(parm, ": value ", b[k], " is not finite"));
     if (k == 0) continue;
     if (basis == FreeformBasis::bezier && !(b[k] > b[k - 1])) {
       return problem(FreeformPart::parameter, k,
@@ -72,16 +78,18 @@ std::optional<FreeformProblem> direction_problem(const FreeformRecordView& recor
                        : message(parm, " gives ", b.size(), " knots: a bspline direction of degree ", p,
                                  " needs at least 2 * (degree + 1) = ", 2 * (p + 1)));
   }
-  const std::vector<double> knots = bspline_knots(basis, p, b);
-  const double low = knots[static_cast<std::size_t>(p)];
-  const double high = knots[static_cast<std::size_t>(count)];
+  // The domain [knot p, knot count] of the equivalent knots, without building them (a Bezier
+  // direction's knot vector is p times longer than its breakpoints).
+  const double low = basis == FreeformBasis::bezier ? b.front() : b[static_cast<std::size_t>(p)];
+  const double high = basis == FreeformBasis::bezier ? b.back() : b[static_cast<std::size_t>(count)];
   if (!(low < high)) {
     return problem(FreeformPart::parameter_count, 0, message(parm, ": the domain [", low, ", ", high, "] is empty"));
   }
   const std::string range = record.directions == 1 ? "the range" : message("the ", direction_name(direction), " range");
   const double start = record.range[2 * static_cast<std::size_t>(direction)];
   const double end = record.range[2 * static_cast<std::size_t>(direction) + 1];
-  if (!std::isfinite(start)) return problem(FreeformPart::range, 0, message(range, " starts at ", start, ", not finite"));
+  if (!std::isfinite(start))
+    return problem(FreeformPart::range, 0, message(range, " starts at ", start, ", not finite"));
   if (!std::isfinite(end)) return problem(FreeformPart::range, 1, message(range, " ends at ", end, ", not finite"));
   if (!(start < end)) return problem(FreeformPart::range, 1, message(range, " [", start, ", ", end, "] is empty"));
   if (start < low) {
@@ -89,7 +97,8 @@ std::optional<FreeformProblem> direction_problem(const FreeformRecordView& recor
                    message(range, " starts at ", start, ", before the domain [", low, ", ", high, "] of ", parm));
   }
   if (end > high) {
-    return problem(FreeformPart::range, 1, message(range, " ends at ", end, ", after the domain [", low, ", ", high, "] of ", parm));
+    return problem(FreeformPart::range, 1,
+                   message(range, " ends at ", end, ", after the domain [", low, ", ", high, "] of ", parm));
   }
   return std::nullopt;
 }
@@ -104,20 +113,21 @@ std::optional<FreeformProblem> record_problem(const FreeformRecordView& record) 
         control_point_count(record.basis, record.degrees[direction], record.parameters[direction]);
   }
   const auto listed = static_cast<std::int64_t>(record.points.size());
-  const char* rule = record.basis == FreeformBasis::bezier ? "points = segments * degree + 1" : "knots = points + degree + 1";
+  const char* rule =
+      record.basis == FreeformBasis::bezier ? "points = segments * degree + 1" : "knots = points + degree + 1";
   if (record.directions == 1 && listed != counts[0]) {
     return FreeformProblem{FreeformPart::point_count, 0, 0,
-                   message("parm u makes ", counts[0], " control points of degree ", record.degrees[0], " (", rule,
-                           "), curv lists ", listed)};
+                           message("parm u makes ", counts[0], " control points of degree ", record.degrees[0], " (",
+                                   rule, "), curv lists ", listed)};
   }
   if (record.directions == 2 && listed != counts[0] * counts[1]) {
     return FreeformProblem{FreeformPart::point_count, 0, 0,
-                   message("parm u and parm v make ", counts[0], " x ", counts[1], " = ", counts[0] * counts[1],
-                           " control points (", rule, "), surf lists ", listed)};
+                           message("parm u and parm v make ", counts[0], " x ", counts[1], " = ", counts[0] * counts[1],
+                                   " control points (", rule, "), surf lists ", listed)};
   }
   if (record.weights.size() != record.points.size()) {
     return FreeformProblem{FreeformPart::point_count, 0, 0,
-                   message(record.points.size(), " control points but ", record.weights.size(), " weights")};
+                           message(record.points.size(), " control points but ", record.weights.size(), " weights")};
   }
   for (std::size_t k = 0; k < record.points.size(); ++k) {
     const double w = record.weights[k];
@@ -125,12 +135,13 @@ std::optional<FreeformProblem> record_problem(const FreeformRecordView& record) 
       return FreeformProblem{FreeformPart::point, 0, k, message("control point ", k, " is not finite")};
     }
     if (record.rational && !(std::isfinite(w) && w > 0.0)) {
-      return FreeformProblem{FreeformPart::weight, 0, k, message("control point ", k, " has weight ", w, ": weights are finite and > 0")};
+      return FreeformProblem{FreeformPart::weight, 0, k,
+                             message("control point ", k, " has weight ", w, ": weights are finite and > 0")};
     }
     if (!record.rational && w != 1.0) {
       return FreeformProblem{FreeformPart::weight, 0, k,
-                     message("control point ", k, " has weight ", w,
-                             " but the record is not rational (cstype without rat): the weight would be lost")};
+                             message("control point ", k, " has weight ", w,
+                                     " but the record is not rational (cstype without rat): the weight would be lost")};
     }
   }
   return std::nullopt;
@@ -161,11 +172,13 @@ std::pair<std::int64_t, std::int64_t> control_point_counts(const FreeformSurface
 }
 
 void validate(const FreeformCurve& curve) {
-  if (const auto problem = detail::record_problem(detail::view_of(curve))) throw InvalidInput("FreeformCurve: " + problem->message);
+  if (const auto problem = detail::record_problem(detail::view_of(curve)))
+    throw InvalidInput("FreeformCurve: " + problem->message);
 }
 
 void validate(const FreeformSurface& surface) {
-  if (const auto problem = detail::record_problem(detail::view_of(surface))) throw InvalidInput("FreeformSurface: " + problem->message);
+  if (const auto problem = detail::record_problem(detail::view_of(surface)))
+    throw InvalidInput("FreeformSurface: " + problem->message);
 }
 
 }  // namespace patchwork

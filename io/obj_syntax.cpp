@@ -34,8 +34,7 @@ ObjReference parse_obj_reference(const TextLines& reader, const TextToken& token
 }
 
 std::int64_t resolve_obj_index(const TextLines& reader, const TextToken& token, std::int64_t index,
-                               std::int64_t defined, std::string_view element,
-                               std::string_view elements) {
+                               std::int64_t defined, std::string_view element, std::string_view elements) {
   if (index > 0) return index - 1;
   if (index < -defined) {  // not -index > defined: -INT64_MIN overflows
     reader.fail(token, message("relative index ", index, " reaches before the first ", element, " (", defined, " ",

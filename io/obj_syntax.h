@@ -31,8 +31,7 @@ ObjReference parse_obj_reference(const TextLines& reader, const TextToken& token
 /// ("vertex", "vertices"). \pre index != 0.
 /// \throws ParseError at the token for a relative index before the first element.
 std::int64_t resolve_obj_index(const TextLines& reader, const TextToken& token, std::int64_t index,
-                               std::int64_t defined, std::string_view element,
-                               std::string_view elements);
+                               std::int64_t defined, std::string_view element, std::string_view elements);
 
 /// Whether the keyword is a statement of OBJ's free-form geometry (cstype ... end, and the
 /// connectivity, trimming and basis-matrix statements that go with it).
