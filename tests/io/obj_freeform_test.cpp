@@ -104,9 +104,8 @@ std::optional<ParseError> parse_error(const std::string& text) {
 }
 
 void expect_malformed(const std::vector<Malformed>& cases) {
-  testing::expect_parse_errors(cases, "bad.obj", [](const std::string& text, const std::string& name) {
-    parse_obj_freeform(text, name);
-  });
+  testing::expect_parse_errors(
+      cases, "bad.obj", [](const std::string& text, const std::string& name) { parse_obj_freeform(text, name); });
 }
 
 // A bspline patch of degrees (2, 1): knots u 0 0 0 1 1 1 (3 points), v 0 0 1 1 (2 points).
@@ -232,7 +231,8 @@ TEST(ObjFreeform, RelativeIndicesEqualAbsoluteOnes) {
   const FreeformDocument absolute = parse_obj_freeform(joined(bspline_lines), "a.obj");
   const FreeformDocument relative =
       parse_obj_freeform(with_line(bspline_lines, 10, "surf 0 1 0 1 -6 -5 -4 -3 -2 -1"), "r.obj");
-  const FreeformDocument mixed = parse_obj_freeform(with_line(bspline_lines, 10, "surf 0 1 0 1 1 -5 3 -3 5 -1"), "m.obj");
+  const FreeformDocument mixed =
+      parse_obj_freeform(with_line(bspline_lines, 10, "surf 0 1 0 1 1 -5 3 -3 5 -1"), "m.obj");
   ASSERT_EQ(absolute.surfaces.size(), 1u);
   EXPECT_EQ(absolute.surfaces[0], bspline_patch());
   EXPECT_EQ(relative, absolute);
@@ -288,22 +288,22 @@ TEST(ObjFreeform, SeveralSurfacesAndCurvesTakeTheirGroupNames) {
   std::vector<std::string> lines = bspline_lines;
   lines[0] = "g left wing";  // 1
   lines.insert(lines.end(), {
-                                "g right",                     // 14
+                                "g right",                       // 14
                                 "surf 0 0.5 0.5 1 1 2 3 4 5 6",  // 15
-                                "parm u 0 0 0 1 1 1",          // 16
-                                "parm v 0 0 1 1",              // 17
-                                "end",                         // 18
-                                "o edge",                      // 19
-                                "cstype rat bezier",           // 20
-                                "v 0 0 0 2",                   // 21
-                                "curv 0.5 1 1 -1 3",           // 22
-                                "parm u 0 1",                  // 23
-                                "end",                         // 24
-                                "g",                           // 25
-                                "surf 0 1 0 1 1 2 3 4 5 6",    // 26: bezier now, 3 x 2 points
-                                "parm u 0 1",                  // 27
-                                "parm v 0 1",                  // 28
-                                "end",                         // 29
+                                "parm u 0 0 0 1 1 1",            // 16
+                                "parm v 0 0 1 1",                // 17
+                                "end",                           // 18
+                                "o edge",                        // 19
+                                "cstype rat bezier",             // 20
+                                "v 0 0 0 2",                     // 21
+                                "curv 0.5 1 1 -1 3",             // 22
+                                "parm u 0 1",                    // 23
+                                "end",                           // 24
+                                "g",                             // 25
+                                "surf 0 1 0 1 1 2 3 4 5 6",      // 26: bezier now, 3 x 2 points
+                                "parm u 0 1",                    // 27
+                                "parm v 0 1",                    // 28
+                                "end",                           // 29
                             });
   lines[8] = "deg 2 1";
   const FreeformDocument document = parse_obj_freeform(joined(lines), "wings.obj");
@@ -361,7 +361,8 @@ double de_boor(const std::vector<double>& knots, int p, const std::vector<double
       const double left = knots[static_cast<std::size_t>(span - p + j)];
       const double right = knots[static_cast<std::size_t>(span + 1 + j - r)];
       const double alpha = (t - left) / (right - left);
-      d[static_cast<std::size_t>(j)] = (1 - alpha) * d[static_cast<std::size_t>(j - 1)] + alpha * d[static_cast<std::size_t>(j)];
+      d[static_cast<std::size_t>(j)] =
+          (1 - alpha) * d[static_cast<std::size_t>(j - 1)] + alpha * d[static_cast<std::size_t>(j)];
     }
   }
   return d[static_cast<std::size_t>(p)];
@@ -375,7 +376,8 @@ double piecewise_bezier(const std::vector<double>& breakpoints, int p, const std
   double sum = 0;
   for (int i = 0; i <= p; ++i) {
     const double binomial = std::tgamma(p + 1) / (std::tgamma(i + 1) * std::tgamma(p - i + 1));
-    sum += binomial * std::pow(s, i) * std::pow(1 - s, p - i) * values[segment * static_cast<std::size_t>(p) + static_cast<std::size_t>(i)];
+    sum += binomial * std::pow(s, i) * std::pow(1 - s, p - i) *
+           values[segment * static_cast<std::size_t>(p) + static_cast<std::size_t>(i)];
   }
   return sum;
 }
@@ -598,14 +600,28 @@ TEST(ObjFreeform, MalformedRecordsAreAParseErrorAtTheRightPlace) {
   expect_malformed({
       // Knots, breakpoints and counts
       {"knots decrease", edit(11, "parm u 0 0 0.5 0.25 1 1"), 11, 16, {"parm u", "must not decrease", "0.5 then 0.25"}},
-      {"knot repeated past degree + 1", edit(11, "parm u 0 0 0 0 1 1 1"), 11, 14, {"knot 0", "more than degree + 1 = 3"}},
-      {"knots too many for the points", edit(11, "parm u 0 0 0 0.5 1 1 1"), 10, 1,
+      {"knot repeated past degree + 1",
+       edit(11, "parm u 0 0 0 0 1 1 1"),
+       11,
+       14,
+       {"knot 0", "more than degree + 1 = 3"}},
+      {"knots too many for the points",
+       edit(11, "parm u 0 0 0 0.5 1 1 1"),
+       10,
+       1,
        {"make 4 x 2 = 8 control points", "knots = points + degree + 1", "surf lists 6"}},
-      {"knots too few for the degree", edit(11, "parm u 0 0 1 1"), 11, 6, {"gives 4 knots", "at least 2 * (degree + 1) = 6"}},
+      {"knots too few for the degree",
+       edit(11, "parm u 0 0 1 1"),
+       11,
+       6,
+       {"gives 4 knots", "at least 2 * (degree + 1) = 6"}},
       {"empty knot domain", edit(12, "parm v 0 1 1 2"), 12, 6, {"parm v", "domain [1, 1] is empty"}},
       {"nan knot", edit(11, "parm u 0 0 nan 1 1 1"), 11, 12, {"finite parameter", "'nan'"}},
       {"knot a word", edit(12, "parm v 0 0 one 1"), 12, 12, {"finite parameter", "'one'"}},
-      {"bezier points not segments * degree + 1", bezier_edit(11, "parm u 0 1 2"), 10, 1,
+      {"bezier points not segments * degree + 1",
+       bezier_edit(11, "parm u 0 1 2"),
+       10,
+       1,
        {"5 x 2 = 10", "points = segments * degree + 1", "surf lists 6"}},
       {"bezier breakpoints repeat", bezier_edit(11, "parm u 0 1 1"), 11, 12, {"increase strictly", "1 then 1"}},
       {"bezier breakpoints decrease", bezier_edit(12, "parm v 1 0"), 12, 10, {"increase strictly", "1 then 0"}},
@@ -626,23 +642,38 @@ TEST(ObjFreeform, MalformedRecordsAreAParseErrorAtTheRightPlace) {
       {"nan coordinate", edit(5, "v nan 1 0"), 5, 3, {"finite coordinate", "'nan'"}},
       {"vertex of two numbers", edit(5, "v 0 1"), 5, 6, {"3 to 4 numbers", "found 2"}},
       {"vertex of five numbers", edit(5, "v 0 1 0 1 2"), 5, 11, {"3 to 4 numbers", "found 5"}},
-      {"weight in a non-rational record", edit(5, "v 0 1 0 0.5"), 10, 20,
+      {"weight in a non-rational record",
+       edit(5, "v 0 1 0 0.5"),
+       10,
+       20,
        {"control point 3 has weight 0.5", "not rational"}},
       {"vn of two numbers", edit(1, "vn 0 1"), 1, 7, {"3 numbers", "found 2"}},
       {"vt a word", edit(1, "vt 0 u"), 1, 6, {"finite number", "'u'"}},
       // Indices
       {"index 0", edit(10, "surf 0 1 0 1 0 2 3 4 5 6"), 10, 14, {"nonzero integers", "'0'"}},
       {"index past the vertices", edit(10, "surf 0 1 0 1 1 2 3 4 5 7"), 10, 24, {"uses vertex 7", "only 6 vertices"}},
-      {"relative index before the first vertex", edit(10, "surf 0 1 0 1 -7 2 3 4 5 6"), 10, 14,
+      {"relative index before the first vertex",
+       edit(10, "surf 0 1 0 1 -7 2 3 4 5 6"),
+       10,
+       14,
        {"relative index -7", "6 vertices defined so far"}},
-      {"most negative index", edit(10, "surf 0 1 0 1 -9223372036854775808 2 3 4 5 6"), 10, 14,
+      {"most negative index",
+       edit(10, "surf 0 1 0 1 -9223372036854775808 2 3 4 5 6"),
+       10,
+       14,
        {"relative index -9223372036854775808"}},
       {"index a word", edit(10, "surf 0 1 0 1 a 2 3 4 5 6"), 10, 14, {"control point", "'a'"}},
       {"four-part reference", edit(10, "surf 0 1 0 1 1/1/1/1 2 3 4 5 6"), 10, 14, {"'1/1/1/1'"}},
-      {"vertex after the surf", "cstype bspline\ndeg 1\ncurv 0 1 1 2\nparm u 0 0 1 1\nend\nv 0 0 0\nv 1 0 0\n", 3,
-       10, {"uses vertex 1", "only 0 vertices"}},
-      {"vt in a curve", "v 0 0 0\nv 1 0 0\nvt 0 0\ncstype bspline\ndeg 1\ncurv 0 1 1/1 2\nparm u 0 0 1 1\nend\n", 6,
-       10, {"curv control points are vertex indices", "'1/1'"}},
+      {"vertex after the surf",
+       "cstype bspline\ndeg 1\ncurv 0 1 1 2\nparm u 0 0 1 1\nend\nv 0 0 0\nv 1 0 0\n",
+       3,
+       10,
+       {"uses vertex 1", "only 0 vertices"}},
+      {"vt in a curve",
+       "v 0 0 0\nv 1 0 0\nvt 0 0\ncstype bspline\ndeg 1\ncurv 0 1 1/1 2\nparm u 0 0 1 1\nend\n",
+       6,
+       10,
+       {"curv control points are vertex indices", "'1/1'"}},
       // Statements out of place
       {"surf without cstype", edit(8, ""), 10, 1, {"'surf' without a 'cstype'"}},
       {"surf without deg", edit(9, ""), 10, 1, {"'surf' without a 'deg'"}},
@@ -653,7 +684,10 @@ TEST(ObjFreeform, MalformedRecordsAreAParseErrorAtTheRightPlace) {
       {"parm v twice", edit(13, "parm v 0 0 1 1") + "end\n", 13, 6, {"second 'parm v'", "line 12"}},
       {"no parm v", edit(12, ""), 13, 1, {"surf block of line 10 has no 'parm v'"}},
       {"parm w", edit(12, "parm w 0 0 1 1"), 12, 6, {"'parm u' or 'parm v'"}},
-      {"parm v in a curve", "v 0 0 0\nv 1 0 0\ncstype bspline\ndeg 1\ncurv 0 1 1 2\nparm v 0 0 1 1\nend\n", 6, 6,
+      {"parm v in a curve",
+       "v 0 0 0\nv 1 0 0\ncstype bspline\ndeg 1\ncurv 0 1 1 2\nparm v 0 0 1 1\nend\n",
+       6,
+       6,
        {"'parm v' in a curv block"}},
       {"vertex inside a block", edit(12, "v 0 0 0"), 12, 1, {"expected 'parm' or 'end'", "block of line 10", "'v'"}},
       {"end with words", edit(13, "end now"), 13, 5, {"'end' alone"}},
@@ -668,22 +702,27 @@ TEST(ObjFreeform, MalformedRecordsAreAParseErrorAtTheRightPlace) {
       {"empty file", "", 1, 1, {"no free-form curve or surface"}},
       {"vertices only", "v 0 0 0\nv 1 0 0\n", 2, 8, {"no free-form curve or surface"}},
       {"unknown statement", edit(2, "vx 1 2 3"), 2, 1, {"unknown OBJ statement 'vx'"}},
-      {"binary garbage", std::string("\x7f" "ELF\x02\x01\x00\xff\n", 9), 1, 1, {"unknown OBJ statement", "\\x7fELF"}},
+      {"binary garbage",
+       std::string("\x7f"
+                   "ELF\x02\x01\x00\xff\n",
+                   9),
+       1,
+       1,
+       {"unknown OBJ statement", "\\x7fELF"}},
   });
 }
 
 TEST(ObjFreeform, UnsupportedStatementsAreRefusedByName) {
-  for (const char* keyword : {"trim", "hole", "scrv", "sp", "con", "bmat", "step", "curv2", "mg", "call", "csh", "f",
-                              "l", "p"}) {
+  for (const char* keyword :
+       {"trim", "hole", "scrv", "sp", "con", "bmat", "step", "curv2", "mg", "call", "csh", "f", "l", "p"}) {
     SCOPED_TRACE(keyword);
     for (const std::size_t line : {1u, 12u}) {  // before the block and inside it
       const auto error = parse_error(with_line(bspline_lines, line, std::string(keyword) + " 0 1 1"));
       ASSERT_TRUE(error);
       EXPECT_EQ(error->line(), static_cast<std::int64_t>(line));
       EXPECT_EQ(error->column(), 1);
-      EXPECT_EQ(std::string(error->what()).rfind("bad.obj:" + std::to_string(line) + ":1: unsupported statement '" +
-                                                     keyword + "': ",
-                                                 0),
+      EXPECT_EQ(std::string(error->what())
+                    .rfind("bad.obj:" + std::to_string(line) + ":1: unsupported statement '" + keyword + "': ", 0),
                 0u)
           << error->what();
     }
@@ -705,8 +744,9 @@ TEST(ObjFreeform, UnsupportedStatementsAreRefusedByName) {
 
 TEST(ObjFreeform, DisplayHintsAreReadPast) {
   std::vector<std::string> lines = bspline_lines;
-  lines[0] = "ctech cparm 0.5\nstech curv 0.5 10\ns 1\nusemtl red\nmtllib a.mtl\nlod 2\nbevel off\n"
-             "c_interp on\nd_interp off\nmaplib a.map\nusemap b\nshadow_obj s.obj\ntrace_obj t.obj";
+  lines[0] =
+      "ctech cparm 0.5\nstech curv 0.5 10\ns 1\nusemtl red\nmtllib a.mtl\nlod 2\nbevel off\n"
+      "c_interp on\nd_interp off\nmaplib a.map\nusemap b\nshadow_obj s.obj\ntrace_obj t.obj";
   FreeformSurface expected = bspline_patch();
   expected.line += 12;
   const FreeformDocument document = parse_obj_freeform(joined(lines), "hints.obj");
@@ -784,6 +824,22 @@ TEST(ObjFreeform, ReadErrorsNameTheFile) {
   EXPECT_EQ(std::string(error->what()).rfind(path.string() + ":11:14: ", 0), 0u) << error->what();
   EXPECT_THROW(read_obj_freeform(folder.path() / "absent.obj"), IoError);
   EXPECT_THROW(read_obj_freeform(folder.path()), IoError);
+}
+
+// The seeds of tests/fuzz/fuzz_obj_freeform are valid files (a seed that fails at once would
+// leave the fuzzer to find the valid part by itself), each with the records it was written for.
+TEST(ObjFreeform, FuzzSeedsRead) {
+  const fs::path seeds = fs::path(PATCHWORK_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / "fuzz_obj_freeform";
+  const std::vector<std::pair<const char*, std::pair<std::size_t, std::size_t>>> expected = {
+      {"bspline_patch.obj", {1, 0}},
+      {"curve_continuation_triples.obj", {1, 1}},
+      {"rational_bezier_cylinder.obj", {1, 0}}};
+  for (const auto& [name, counts] : expected) {
+    SCOPED_TRACE(name);
+    const FreeformDocument document = read_obj_freeform(seeds / name);
+    EXPECT_EQ(document.surfaces.size(), counts.first);
+    EXPECT_EQ(document.curves.size(), counts.second);
+  }
 }
 
 }  // namespace
