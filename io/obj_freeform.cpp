@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <istream>
 #include <iterator>
 #include <optional>
+#include <sstream>
 #include <utility>
 
 #include "core/errors.h"
@@ -432,6 +434,13 @@ void check_writable(const FreeformRecordView& record, const std::string& name, c
 
 FreeformDocument parse_obj_freeform(std::string_view text, const std::string& name) {
   return FreeformReader(text, name).read();
+}
+
+FreeformDocument parse_obj_freeform(std::istream& in, const std::string& name) {
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw IoError(name, "read failed");
+  return parse_obj_freeform(text.str(), name);
 }
 
 FreeformDocument read_obj_freeform(const std::filesystem::path& path) {

@@ -54,6 +54,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <iosfwd>
 #include <span>
 #include <string>
 #include <string_view>
@@ -130,6 +131,10 @@ void validate(const FreeformSurface& surface);
 
 /// Parses the free-form part of OBJ text; `name` is used in error messages. \throws ParseError.
 FreeformDocument parse_obj_freeform(std::string_view text, const std::string& name);
+
+/// Parses the free-form OBJ text a stream holds up to its end; `name` is used in error messages.
+/// \throws IoError naming `name` if the stream fails, ParseError if the text is malformed.
+FreeformDocument parse_obj_freeform(std::istream& in, const std::string& name);
 
 /// Reads a free-form OBJ file. \throws IoError if it cannot be read, ParseError if it is malformed.
 FreeformDocument read_obj_freeform(const std::filesystem::path& path);

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -225,6 +226,17 @@ TEST(ObjFreeform, ReadsARationalBezierSurface) {
   // Two segments of degree 2 in u: 5 points; one of degree 1 in v: 2.
   EXPECT_EQ(control_point_counts(s), (std::pair<std::int64_t, std::int64_t>{5, 2}));
   EXPECT_EQ(bspline_knots(s.basis, s.degree_u, s.parameters_u), (std::vector<double>{0, 0, 0, 1, 1, 2, 2, 2}));
+}
+
+TEST(ObjFreeform, ReadsFromAStreamAsFromAString) {
+  std::istringstream in(joined(bspline_lines));
+  const FreeformDocument document = parse_obj_freeform(in, "stream.obj");
+  ASSERT_EQ(document.surfaces.size(), 1u);
+  EXPECT_EQ(document.surfaces[0], bspline_patch());
+  std::istringstream bad(with_line(bspline_lines, 11, "parm u 0 0 1 0.5 1 1"));
+  const auto error = testing::parse_error_of([&] { parse_obj_freeform(bad, "stream.obj"); });
+  ASSERT_TRUE(error);
+  EXPECT_EQ(std::string(error->what()).rfind("stream.obj:11:14: ", 0), 0u) << error->what();
 }
 
 TEST(ObjFreeform, RelativeIndicesEqualAbsoluteOnes) {
