@@ -19,10 +19,12 @@ include(CMakePackageConfigHelpers)
 set(patchwork_cmake_dir "${CMAKE_INSTALL_LIBDIR}/cmake/patchwork")
 set(patchwork_include_dir "${CMAKE_INSTALL_INCLUDEDIR}/patchwork")
 # Headers of installed modules that are not part of the installed API: osd_refiner.h is shared
-# by subdivision's .cpp files and includes OpenSubdiv, which no public header may; the
-# tessellator's stages and the patch-edge helpers are shared by surfaces' .cpp files only.
+# by subdivision's .cpp files and includes OpenSubdiv, which no public header may; the others
+# are shared by their module's .cpp files only (the homogeneous form of rational curves, the
+# tessellator's stages, the patch-edge helpers, what the two OBJ readers share, the free-form
+# records' checks).
 set(patchwork_internal_headers subdivision/osd_refiner.h curves/homogeneous.h surfaces/tessellator_stages.h
-    surfaces/patch_edge_geometry.h)
+    surfaces/patch_edge_geometry.h io/obj_syntax.h io/obj_freeform_checks.h)
 
 # What code compiled against the installed libraries must share with them, in place of this
 # build's patchwork_build_flags (assertions and instrumentation are the libraries' own business):

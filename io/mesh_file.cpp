@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <functional>
 #include <utility>
 
 #include "core/errors.h"
@@ -65,36 +66,67 @@ void write_mesh(const std::filesystem::path& path, const FaceVertexMesh& mesh, P
 
 namespace detail {
 
-TextLines::TextLines(std::string_view text, std::string name, char comment)
-    : text_(text), name_(std::move(name)), comment_(comment) {}
+TextLines::TextLines(std::string_view text, std::string name, char comment, bool continuation)
+    : text_(text), name_(std::move(name)), comment_(comment), continuation_(continuation) {}
 
 std::span<const TextToken> TextLines::next_line() {
+  tokens_.clear();
+  token_lines_.clear();
+  std::int64_t first_line = 0;
   while (position_ < text_.size()) {
     const std::size_t end = std::min(text_.find('\n', position_), text_.size());
     std::string_view line = text_.substr(position_, end - position_);
     position_ = std::min(end + 1, text_.size());
-    ++line_;
+    ++physical_line_;
+    if (first_line == 0) first_line = physical_line_;
     if (comment_ != '\0') line = line.substr(0, std::min(line.find(comment_), line.size()));
-    tokens_.clear();
+    std::size_t last = line.size();
+    while (last > 0 && is_space(line[last - 1])) --last;
+    const bool continued = continuation_ && last > 0 && line[last - 1] == '\\';
+    if (continued) line = line.substr(0, last - 1);
     std::size_t k = 0;
     while (k < line.size()) {
       while (k < line.size() && is_space(line[k])) ++k;
       const std::size_t start = k;
       while (k < line.size() && !is_space(line[k])) ++k;
-      if (k > start) tokens_.push_back({line.substr(start, k - start), static_cast<std::int64_t>(start) + 1});
+      if (k > start) {
+        tokens_.push_back({line.substr(start, k - start), static_cast<std::int64_t>(start) + 1});
+        token_lines_.push_back(physical_line_);
+      }
     }
+    if (continued && position_ < text_.size()) continue;
     if (!tokens_.empty()) {
-      last_token_line_ = line_;
+      last_token_line_ = token_lines_.back();
       last_token_end_ = tokens_.back().end_column();
+      line_ = first_line;
       return tokens_;
     }
+    first_line = 0;
   }
   tokens_.clear();
+  token_lines_.clear();
+  line_ = physical_line_;
   return tokens_;
 }
 
 void TextLines::fail(std::int64_t column, const std::string& message) const {
   throw ParseError(name_, line_, column, message);
+}
+
+std::int64_t TextLines::token_line(const TextToken& token) const {
+  // A copy of a token (not in this line) has no continuation line to name.
+  const std::less<const TextToken*> before;
+  const bool in_line =
+      !tokens_.empty() && !before(&token, tokens_.data()) && before(&token, tokens_.data() + tokens_.size());
+  return in_line ? token_lines_[static_cast<std::size_t>(&token - tokens_.data())] : line_;
+}
+
+void TextLines::fail(const TextToken& token, const std::string& message) const {
+  const std::int64_t physical = token_line(token);
+  if (physical != line_) {
+    throw ParseError(name_, line_, token.column, detail::message(message, " (in continuation line ", physical, ")"));
+  }
+  throw ParseError(name_, line_, token.column, message);
 }
 
 void TextLines::fail_at_end(const std::string& message) const {

@@ -52,15 +52,20 @@ struct TextToken {
 /// Splits a text into lines of tokens, remembering lines and columns for error messages.
 /// Spaces, tabs, '\r', '\v' and '\f' separate tokens (Windows line endings read); blank lines
 /// are skipped; `comment` (if not '\0') starts a comment that runs to the end of its line.
+/// With `continuation` (OBJ), a line whose last character before any comment and trailing space
+/// is '\' goes on in the next line: the '\' is dropped and the tokens of both form one line,
+/// which line() numbers by the line it starts in; each token keeps the column in its own line.
 class TextLines {
  public:
-  TextLines(std::string_view text, std::string name, char comment);
+  TextLines(std::string_view text, std::string name, char comment, bool continuation = false);
 
   /// The tokens of the next line that has any; empty at the end of the text (then line() and
   /// fail_at_end() refer to just after the last token). Valid until the next call.
   std::span<const TextToken> next_line();
-  /// The 1-based number of the line last returned.
+  /// The 1-based number of the line last returned (where it starts, with continuation lines).
   std::int64_t line() const noexcept { return line_; }
+  /// The physical line a token of the line last returned stands in (line() for a copy).
+  std::int64_t token_line(const TextToken& token) const;
   /// The byte offset where the next line starts.
   std::size_t offset() const noexcept { return position_; }
   /// The bytes not read yet.
@@ -69,6 +74,10 @@ class TextLines {
 
   /// Fails at `column` of the line last returned. \throws ParseError.
   [[noreturn]] void fail(std::int64_t column, const std::string& message) const;
+  /// Fails at a token of the line last returned: its column, and for a token in a continuation
+  /// line, that line's number in the message (the error's line is where the statement starts).
+  /// \throws ParseError.
+  [[noreturn]] void fail(const TextToken& token, const std::string& message) const;
   /// Fails just after the last token of the text (1:1 for a blank text). \throws ParseError.
   [[noreturn]] void fail_at_end(const std::string& message) const;
 
@@ -76,11 +85,14 @@ class TextLines {
   std::string_view text_;
   std::string name_;
   char comment_;
+  bool continuation_;
   std::size_t position_ = 0;
   std::int64_t line_ = 0;
+  std::int64_t physical_line_ = 0;
   std::int64_t last_token_line_ = 1;
   std::int64_t last_token_end_ = 1;
   std::vector<TextToken> tokens_;
+  std::vector<std::int64_t> token_lines_;  // the physical line of each token
 };
 
 /// A token as it may appear in a message: quoted, at most 32 bytes, bytes other than printable

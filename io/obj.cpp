@@ -1,7 +1,6 @@
 #include "io/obj.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -11,6 +10,7 @@
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/mesh_file.h"
+#include "io/obj_syntax.h"
 
 namespace patchwork {
 namespace {
@@ -19,12 +19,12 @@ using detail::message;
 using detail::TextLines;
 using detail::TextToken;
 
-// Statements of the OBJ specification that carry nothing a FaceVertexMesh holds.
+// Statements of the OBJ specification that carry nothing a FaceVertexMesh holds: vertex data
+// other than positions, grouping, and display and rendering attributes (ctech and stech are the
+// free-form ones). Free-form geometry itself is refused (read_obj_freeform reads it).
 constexpr std::string_view ignored_statements[] = {
-    "vt",       "vn",   "vp",     "g",      "o",          "s",         "mg",    "usemtl", "mtllib",
-    "l",        "p",    "cstype", "deg",    "bmat",       "step",      "curv",  "curv2",  "surf",
-    "parm",     "trim", "hole",   "scrv",   "sp",         "end",       "con",   "bevel",  "c_interp",
-    "d_interp", "lod",  "maplib", "usemap", "shadow_obj", "trace_obj", "ctech", "stech",  "call"};
+    "vt",    "vn",       "vp",       "g",   "o",      "s",      "mg",         "usemtl",    "mtllib", "l",     "p",
+    "bevel", "c_interp", "d_interp", "lod", "maplib", "usemap", "shadow_obj", "trace_obj", "ctech",  "stech", "call"};
 
 bool is_ignored(std::string_view keyword) {
   return std::find(std::begin(ignored_statements), std::end(ignored_statements), keyword) !=
@@ -34,42 +34,14 @@ bool is_ignored(std::string_view keyword) {
 // The vertex a corner token refers to, as a 0-based index that may be >= the vertices defined so
 // far (forward references are checked at the end). `vertices` is the number defined so far.
 std::int64_t corner_vertex(const TextLines& reader, const TextToken& corner, std::int64_t vertices) {
-  // Split "v", "v/vt", "v//vn" or "v/vt/vn" into its parts.
-  std::array<std::string_view, 3> parts;
-  std::size_t count = 0;
-  std::string_view rest = corner.text;
-  while (true) {
-    const std::size_t slash = rest.find('/');
-    if (count == parts.size()) {
-      reader.fail(corner.column,
-                  message("expected a face corner v, v/vt, v//vn or v/vt/vn, found ", detail::quoted(corner.text)));
-    }
-    parts[count++] = rest.substr(0, slash);
-    if (slash == std::string_view::npos) break;
-    rest.remove_prefix(slash + 1);
-  }
-  for (std::size_t k = 0; k < count; ++k) {
-    if (parts[k].empty() && k == 1 && count == 3) continue;  // v//vn
-    std::int64_t value = 0;
-    if (!detail::parse_integer(parts[k], value) || value == 0) {
-      reader.fail(corner.column, message("expected a face corner v, v/vt, v//vn or v/vt/vn of nonzero integers, found ",
-                                         detail::quoted(corner.text)));
-    }
-  }
-  std::int64_t index = 0;
-  detail::parse_integer(parts[0], index);  // checked above
-  if (index > 0) return index - 1;
-  if (index < -vertices) {  // not -index > vertices: -INT64_MIN overflows
-    reader.fail(corner.column, message("relative index ", index, " reaches before the first vertex (", vertices,
-                                       " vertices defined so far)"));
-  }
-  return vertices + index;
+  const detail::ObjReference reference = detail::parse_obj_reference(reader, corner, "a face corner");
+  return detail::resolve_obj_index(reader, corner, reference.vertex, vertices, "vertex", "vertices");
 }
 
 }  // namespace
 
 FaceVertexMesh parse_obj(std::string_view text, const std::string& name) {
-  TextLines reader(text, name, '#');
+  TextLines reader(text, name, '#', /*continuation=*/true);
   std::vector<double> xyz;
   std::vector<std::uint32_t> face_sizes;
   std::vector<std::uint32_t> face_indices;
@@ -92,7 +64,7 @@ FaceVertexMesh parse_obj(std::string_view text, const std::string& name) {
       for (std::size_t k = 1; k < tokens.size(); ++k) {
         double value = 0.0;
         if (!detail::parse_double(tokens[k].text, value) || (k <= 3 && !std::isfinite(value))) {
-          reader.fail(tokens[k].column,
+          reader.fail(tokens[k],
                       message(k <= 3 ? "expected a finite coordinate, found " : "expected a number, found ",
                               detail::quoted(tokens[k].text)));
         }
@@ -105,7 +77,7 @@ FaceVertexMesh parse_obj(std::string_view text, const std::string& name) {
                     message("a face has at least 3 corners, found ", corners));
       }
       if (corners > 0xffffffffu)
-        reader.fail(tokens[1].column, message("a face has ", corners, " corners (32-bit sizes)"));
+        reader.fail(tokens[1], message("a face has ", corners, " corners (32-bit sizes)"));
       const auto vertices = static_cast<std::int64_t>(xyz.size() / 3);
       for (std::size_t k = 1; k < tokens.size(); ++k) {
         const std::int64_t index = corner_vertex(reader, tokens[k], vertices);
@@ -118,6 +90,10 @@ FaceVertexMesh parse_obj(std::string_view text, const std::string& name) {
         face_indices.push_back(static_cast<std::uint32_t>(std::min<std::int64_t>(index, 0xffffffff)));
       }
       face_sizes.push_back(static_cast<std::uint32_t>(corners));
+    } else if (detail::is_obj_freeform_statement(keyword)) {
+      reader.fail(tokens[0], message("free-form statement ", detail::quoted(keyword),
+                                     " in a polygon OBJ file: free-form curves and surfaces are read by "
+                                     "read_obj_freeform (io/obj_freeform.h), not as a mesh"));
     } else if (!is_ignored(keyword)) {
       reader.fail(tokens[0].column, message("unknown OBJ statement ", detail::quoted(keyword)));
     }

@@ -1,5 +1,5 @@
 #pragma once
-// Wavefront OBJ, the polygon part: vertices and faces, everything else read past.
+// Wavefront OBJ, the polygon part: vertices and faces; free-form geometry refused, the rest read past.
 //
 //   # a comment (also after a statement)
 //   v 0 0 0            x y z, optionally w or a colour after them (3 to 7 numbers; xyz used)
@@ -11,10 +11,13 @@
 //
 // Reading: a face has at least 3 corners (repeated vertices are kept for topology analysis to
 // report); absolute indices may refer to vertices defined later in the file; coordinates are
-// finite; a statement OBJ does not define, an empty file or one without any vertex is a
-// ParseError with the file, the line and the column. The statements read past are vt, vn, vp,
-// g, o, s, mg, usemtl, mtllib, l, p and those of free-form geometry and rendering (cstype ...
-// end, lod, ctech, stech, shadow_obj, trace_obj, maplib, usemap, bevel, c_interp, d_interp, call).
+// finite; a line ending in '\' goes on in the next one (errors name the line it starts in); a
+// statement OBJ does not define, an empty file or one without any vertex is a ParseError with the
+// file, the line and the column. The statements read past are vt, vn, vp, g, o, s, mg, usemtl,
+// mtllib, l, p and those of rendering (lod, ctech, stech, shadow_obj, trace_obj, maplib, usemap,
+// bevel, c_interp, d_interp, call). Free-form geometry (cstype, deg, bmat, step, curv, curv2,
+// surf, parm, trim, hole, scrv, sp, end, con) is a ParseError pointing to read_obj_freeform
+// (io/obj_freeform.h): reading past it would give a mesh without those surfaces.
 // Writing: 'v x y z' lines in the shortest decimal form that reads back to the same double,
 // then 'f' lines with 1-based indices; whole or not at all.
 

@@ -21,6 +21,7 @@
 
 #include "core/errors.h"
 #include "tests/support/extreme_doubles.h"
+#include "tests/support/parse_errors.h"
 #include "tests/support/temporary_directory.h"
 #include "io/atomic_file.h"
 
@@ -53,16 +54,7 @@ bool bit_identical(const std::vector<BezierPatch3>& a, const std::vector<BezierP
 
 // The ParseError that parse_bpt throws on `text`, or nothing (then the test has failed).
 std::optional<ParseError> parse_error(const std::string& text, const std::string& name = "test.bpt") {
-  try {
-    parse_bpt(text, name);
-  } catch (const ParseError& error) {
-    return error;
-  } catch (const std::exception& other) {
-    ADD_FAILURE() << "expected ParseError, got another exception: " << other.what();
-    return std::nullopt;
-  }
-  ADD_FAILURE() << "expected ParseError, but the text parsed:\n" << text;
-  return std::nullopt;
+  return testing::parse_error_of([&] { parse_bpt(text, name); });
 }
 
 // A valid one-patch file of degrees (1, 1): point k on line 3 + k.
@@ -232,13 +224,7 @@ TEST(Bpt, AcceptsWindowsLineEndingsBlankLinesAndSpacing) {
 // ---------------------------------------------------------------------------------------------
 // Malformed input: every case is a ParseError at the right place, naming what was expected.
 
-struct Malformed {
-  const char* what;
-  std::string text;
-  std::int64_t line;
-  std::int64_t column;
-  std::vector<std::string> message_parts;
-};
+using testing::Malformed;
 
 TEST(Bpt, MalformedTextIsAParseErrorAtTheRightPlace) {
   using namespace std::string_literals;
@@ -282,18 +268,8 @@ TEST(Bpt, MalformedTextIsAParseErrorAtTheRightPlace) {
       {"error after CRLF lines", "1\r\n1 1\r\n0 0 0\r\n1 0 0\r\n0 nan 0\r\n1 1 1\r\n", 5, 3, {"finite coordinate", "'nan'"}},
       {"error after blank lines", "\n\n1\n\n1 1\n0 0 0\n1 0 0\n0 1 0\n1 1\n", 9, 4, {"point 3 of patch 0"}},
   };
-  for (const Malformed& c : cases) {
-    SCOPED_TRACE(c.what);
-    const auto error = parse_error(c.text, "bad.bpt");
-    if (!error) continue;
-    EXPECT_EQ(error->path(), "bad.bpt");
-    EXPECT_EQ(error->line(), c.line);
-    EXPECT_EQ(error->column(), c.column);
-    const std::string message = error->what();
-    EXPECT_EQ(message.rfind("bad.bpt:" + std::to_string(c.line) + ":" + std::to_string(c.column) + ": ", 0), 0U) << message;
-    EXPECT_EQ(std::strlen(error->what()), message.size());  // no NUL byte cuts the message short
-    for (const std::string& part : c.message_parts) EXPECT_NE(message.find(part), std::string::npos) << message << "\nlacks: " << part;
-  }
+  testing::expect_parse_errors(cases, "bad.bpt",
+                               [](const std::string& text, const std::string& name) { parse_bpt(text, name); });
 }
 
 TEST(Bpt, LongGarbageTokenIsShortenedInTheMessage) {

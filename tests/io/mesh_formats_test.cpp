@@ -22,6 +22,7 @@
 
 #include "core/errors.h"
 #include "tests/support/extreme_doubles.h"
+#include "tests/support/parse_errors.h"
 #include "tests/support/temporary_directory.h"
 #include "io/atomic_file.h"
 #include "io/mesh_file.h"
@@ -119,44 +120,17 @@ FaceVertexMesh tetrahedron() {
                    {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}});
 }
 
+using testing::Malformed;
+
 // The ParseError that parsing `text` throws, or nothing (then the test has failed).
 std::optional<ParseError> parse_error(std::string_view text, Format format, const std::string& name) {
-  try {
-    parse_as(text, format, name);
-  } catch (const ParseError& error) {
-    return error;
-  } catch (const std::exception& other) {
-    ADD_FAILURE() << "expected ParseError, got another exception: " << other.what();
-    return std::nullopt;
-  }
-  ADD_FAILURE() << "expected ParseError, but the text parsed";
-  return std::nullopt;
+  return testing::parse_error_of([&] { parse_as(text, format, name); });
 }
 
-struct Malformed {
-  const char* what;
-  std::string text;
-  std::int64_t line;
-  std::int64_t column;
-  std::vector<std::string> message_parts;
-};
-
 void expect_malformed(Format format, const std::vector<Malformed>& cases) {
-  for (const Malformed& c : cases) {
-    SCOPED_TRACE(c.what);
-    const auto error = parse_error(c.text, format, "bad.mesh");
-    if (!error) continue;
-    EXPECT_EQ(error->path(), "bad.mesh");
-    EXPECT_EQ(error->line(), c.line);
-    EXPECT_EQ(error->column(), c.column);
-    const std::string message = error->what();
-    EXPECT_EQ(message.rfind("bad.mesh:" + std::to_string(c.line) + ":" + std::to_string(c.column) + ": ", 0), 0U)
-        << message;
-    EXPECT_EQ(std::strlen(error->what()), message.size());  // no NUL byte cuts the message short
-    for (const std::string& part : c.message_parts) {
-      EXPECT_NE(message.find(part), std::string::npos) << message << "\nlacks: " << part;
-    }
-  }
+  testing::expect_parse_errors(cases, "bad.mesh", [&](const std::string& text, const std::string& name) {
+    parse_as(text, format, name);
+  });
 }
 
 // The lines joined with '\n', line `line` (1-based) replaced; an empty replacement removes it.
@@ -558,6 +532,34 @@ TEST(Obj, MalformedTextIsAParseErrorAtTheRightPlace) {
           {"latin-1 byte", edit(4, "v 1 1 0\xe9"), 4, 7, {"'0\\xe9'"}},
           {"error after CRLF lines", "v 0 0 0\r\nv 1 0 0\r\nf 1 2\r\n", 3, 3, {"found 2"}},
       });
+}
+
+TEST(Obj, RefusesFreeformStatementsPointingToTheFreeformReader) {
+  const std::string polygons = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  for (const char* keyword : {"cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv",
+                              "sp", "end", "con"}) {
+    SCOPED_TRACE(keyword);
+    const auto error = testing::parse_error_of([&] { parse_obj(polygons + "  " + keyword + " 1\n", "mixed.obj"); });
+    ASSERT_TRUE(error);
+    EXPECT_EQ(error->line(), 5);
+    EXPECT_EQ(error->column(), 3);
+    const std::string message = error->what();
+    EXPECT_NE(message.find(std::string("free-form statement '") + keyword + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find("read_obj_freeform"), std::string::npos) << message;
+  }
+  // Its rendering hints stay read past.
+  EXPECT_EQ(parse_obj(polygons + "ctech cparm 1\nstech cparma 1 1\n", "hints.obj").face_count(), 1u);
+}
+
+TEST(Obj, ContinuationLinesJoinIntoTheStatementWhereTheyStart) {
+  const FaceVertexMesh mesh = parse_obj("v 0 0 0\nv 1 0 \\\n 0\nv 0 1 0\nf 1 \\\n 2 \\  # comment\n 3\n", "continued.obj");
+  EXPECT_EQ(mesh, make_mesh({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {{0, 1, 2}}));
+  // An error in a continuation line names the line the statement starts in and its own.
+  const auto error = parse_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\\n   x\n", Format::obj, "continued.obj");
+  ASSERT_TRUE(error);
+  EXPECT_EQ(error->line(), 4);
+  EXPECT_EQ(error->column(), 4);
+  EXPECT_NE(std::string(error->what()).find("(in continuation line 5)"), std::string::npos) << error->what();
 }
 
 const std::vector<std::string> off_lines = {"OFF",   "# tetrahedron", "4 4 6",   "0 0 0",   "1 0 0",  "0 1 0",
