@@ -471,4 +471,21 @@ void write_obj_freeform(const std::filesystem::path& path, const FreeformDocumen
   write_file_atomically(path, format_obj_freeform(document));
 }
 
+bool is_obj_freeform(std::string_view text) {
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view line = text.substr(start, end - start);
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first != std::string_view::npos) {
+      const std::size_t last = line.find_first_of(" \t\r\\", first);
+      const std::string_view keyword = line.substr(first, last == std::string_view::npos ? std::string_view::npos : last - first);
+      if (detail::is_obj_freeform_statement(keyword)) return true;
+    }
+    start = end + 1;
+  }
+  return false;
+}
+
 }  // namespace patchwork

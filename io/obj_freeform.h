@@ -132,6 +132,10 @@ void validate(const FreeformSurface& surface);
 /// Parses the free-form part of OBJ text; `name` is used in error messages. \throws ParseError.
 FreeformDocument parse_obj_freeform(std::string_view text, const std::string& name);
 
+/// Whether OBJ text holds free-form geometry: some line's first word is a free-form statement
+/// (cstype, deg, curv, surf, parm, end, ...). A polygon file has none (read_obj refuses them).
+bool is_obj_freeform(std::string_view text);
+
 /// Parses the free-form OBJ text a stream holds up to its end; `name` is used in error messages.
 /// \throws IoError naming `name` if the stream fails, ParseError if the text is malformed.
 FreeformDocument parse_obj_freeform(std::istream& in, const std::string& name);

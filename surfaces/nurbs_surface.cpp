@@ -203,4 +203,50 @@ NurbsBezierPatches bezier_patches(const NurbsSurface& surface) {
   return result;
 }
 
+NurbsBezierPatches bezier_patches(const NurbsSurface& surface, double u0, double u1, double v0, double v1) {
+  const KnotVector& U = surface.knots_u();
+  const KnotVector& V = surface.knots_v();
+  if (!(U.a() <= u0 && u0 < u1 && u1 <= U.b()) || !(V.a() <= v0 && v0 < v1 && v1 <= V.b())) {
+    throw InvalidInput(detail::message("bezier_patches: the range [", u0, ", ", u1, "] x [", v0, ", ", v1,
+                                       "] is not inside the domain [", U.a(), ", ", U.b(), "] x [", V.a(), ", ", V.b(), "]"));
+  }
+  NurbsSurface cut = surface;
+  // An interior end becomes a breakpoint of multiplicity p: the pieces then end there.
+  const auto cut_u = [&](double u) {
+    const int room = cut.degree_u() - cut.knots_u().multiplicity(u);
+    if (u > U.a() && u < U.b() && room > 0) cut = insert_knot_u(cut, u, room);
+  };
+  const auto cut_v = [&](double v) {
+    const int room = cut.degree_v() - cut.knots_v().multiplicity(v);
+    if (v > V.a() && v < V.b() && room > 0) cut = insert_knot_v(cut, v, room);
+  };
+  cut_u(u0);
+  cut_u(u1);
+  cut_v(v0);
+  cut_v(v1);
+  const NurbsBezierPatches whole = bezier_patches(cut);
+  // The spans inside the range, and the breakpoints and continuities between them.
+  const auto inside = [](const std::vector<double>& breaks, double from, double to) {
+    std::vector<int> spans;
+    for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+      if (breaks[k] >= from && breaks[k + 1] <= to) spans.push_back(static_cast<int>(k));
+    }
+    return spans;
+  };
+  const std::vector<int> su = inside(whole.breaks_u, u0, u1), sv = inside(whole.breaks_v, v0, v1);
+  NurbsBezierPatches result;
+  result.spans_u = static_cast<int>(su.size());
+  result.spans_v = static_cast<int>(sv.size());
+  for (int s : su) result.breaks_u.push_back(whole.breaks_u[static_cast<std::size_t>(s)]);
+  result.breaks_u.push_back(whole.breaks_u[static_cast<std::size_t>(su.back()) + 1]);
+  for (int t : sv) result.breaks_v.push_back(whole.breaks_v[static_cast<std::size_t>(t)]);
+  result.breaks_v.push_back(whole.breaks_v[static_cast<std::size_t>(sv.back()) + 1]);
+  for (std::size_t k = 0; k + 1 < su.size(); ++k) result.continuity_u.push_back(whole.continuity_u[static_cast<std::size_t>(su[k])]);
+  for (std::size_t k = 0; k + 1 < sv.size(); ++k) result.continuity_v.push_back(whole.continuity_v[static_cast<std::size_t>(sv[k])]);
+  for (int t : sv) {
+    for (int s : su) result.patches.push_back(whole.patches[static_cast<std::size_t>(s + whole.spans_u * t)]);
+  }
+  return result;
+}
+
 }  // namespace patchwork

@@ -98,4 +98,9 @@ struct NurbsBezierPatches {
 /// The Bezier extraction of the file comment.
 NurbsBezierPatches bezier_patches(const NurbsSurface& surface);
 
+/// The Bezier patches of the surface over [u0, u1] x [v0, v1] only (OBJ's `surf` range): the
+/// range's ends made breakpoints by knot insertion (to multiplicity p, q), the patches outside
+/// left out. \throws InvalidInput unless a_u <= u0 < u1 <= b_u and a_v <= v0 < v1 <= b_v.
+NurbsBezierPatches bezier_patches(const NurbsSurface& surface, double u0, double u1, double v0, double v1);
+
 }  // namespace patchwork

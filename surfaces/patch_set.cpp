@@ -16,6 +16,7 @@
 #include "curves/continuity.h"
 #include "curves/degree.h"
 #include "curves/subdivision.h"
+#include "surfaces/patch_bounding_box.h"
 #include "surfaces/patch_edge_geometry.h"
 
 namespace patchwork {
@@ -519,6 +520,16 @@ std::vector<Shell> shells(const PatchSet& set) {
     if (!t.consistently_oriented) shell_of(t.edge.patch).consistently_oriented = false;
   }
   return result;
+}
+
+Eigen::AlignedBox3d bounding_box(const PatchSet& set, double tolerance) {
+  if (set.rational_count() == 0) return bounding_box(std::span<const BezierPatch3>(set.patches()), tolerance);
+  Eigen::AlignedBox3d box;
+  for (std::uint32_t p = 0; p < set.count(); ++p) {
+    const RationalBezierPatch* rational = set.rational(p);
+    box.extend(rational != nullptr ? bounding_box(*rational, tolerance) : bounding_box(set.control_nets()[p], tolerance));
+  }
+  return box;
 }
 
 PatchSetReport report(const PatchSet& set) {

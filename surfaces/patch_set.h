@@ -26,6 +26,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "surfaces/bezier_patch.h"
 #include "surfaces/edge_continuity.h"
 #include "surfaces/rational_bezier_patch.h"
@@ -195,6 +197,10 @@ struct Shell {
 /// The shells of a set: its edge-connected parts (touching points and collapsed edges do not
 /// join patches), in the order of their smallest patch.
 std::vector<Shell> shells(const PatchSet& set);
+
+/// The tight box of the set's surface, every patch of its kind (surfaces/patch_bounding_box.h),
+/// each face within `tolerance` of the surface's extreme. \throws InvalidInput as bounding_box.
+Eigen::AlignedBox3d bounding_box(const PatchSet& set, double tolerance);
 
 /// The report of a patch set (keeps a pointer to `set` for the per-element listing).
 PatchSetReport report(const PatchSet& set);

@@ -45,16 +45,7 @@ SecondDerivativeBounds split_bounds(const std::vector<SecondDerivativeBounds>& c
 
 double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal) {
   if (!tight_diagonal) return set.size();
-  const double tolerance = 1e-6 * set.size();
-  if (set.rational_count() == 0) {
-    return bounding_box(std::span<const BezierPatch3>(set.patches()), tolerance).diagonal().norm();
-  }
-  Eigen::AlignedBox3d box;
-  for (std::uint32_t p = 0; p < set.count(); ++p) {
-    const RationalBezierPatch* rational = set.rational(p);
-    box.extend(rational != nullptr ? bounding_box(*rational, tolerance) : bounding_box(set.control_nets()[p], tolerance));
-  }
-  return box.diagonal().norm();
+  return bounding_box(set, 1e-6 * set.size()).diagonal().norm();
 }
 
 // Per patch, the largest gap of its joined edges (SurfacePieces::gaps): the gap of its shared

@@ -13,6 +13,7 @@
 #include "tools/curve_demo.h"
 #include "tools/default_tolerance.h"
 #include "tools/info_command.h"
+#include "tools/patch_input.h"
 #include "tools/patches_command.h"
 #include "tools/subdivide_command.h"
 #include "tools/tessellate_command.h"
@@ -39,19 +40,19 @@ int main(int argc, char** argv) {
   std::string patch_file;
   bool json = false;
   CLI::App* patches = app.add_subcommand("patches", "Adjacency, continuity and area of a BPT patch set");
-  patches->add_option("file", patch_file, "BPT file (e.g. data/teapot.bpt)")->required();
+  patches->add_option("file", patch_file, "BPT or free-form OBJ file (e.g. data/teapot.bpt)")->required();
   patches->add_flag("--json", json, "Print the report as JSON");
 
   std::string info_file;
   bool info_json = false;
   CLI::App* info = app.add_subcommand("info", "Topology of a mesh (OBJ, OFF, PLY) or patch set (BPT) file");
-  info->add_option("file", info_file, "Mesh or BPT file")->required();
+  info->add_option("file", info_file, "Mesh, BPT or free-form OBJ file")->required();
   info->add_flag("--json", info_json, "Print the report as JSON");
 
   const std::string default_relative_text = patchwork::detail::message(patchwork::tools::default_relative_tolerance);
   patchwork::tools::TessellateArguments tess;
   CLI::App* tessellate = app.add_subcommand("tessellate", "Patch set (BPT) to a render-ready mesh within an error");
-  tessellate->add_option("input", tess.input, "BPT file")->required();
+  tessellate->add_option("input", tess.input, "BPT or free-form OBJ (NURBS) file")->required();
   tessellate->add_option("-o,--output", tess.output, "Output .glb, .gltf, .obj, .off or .ply")->required();
   auto* tolerance = tessellate->add_option("--tolerance", tess.tolerance, "Absolute tolerance (model units)");
   auto* relative = tessellate->add_option("--relative-tolerance", tess.relative_tolerance,
@@ -121,7 +122,7 @@ int main(int argc, char** argv) {
 
   std::string convert_input;
   std::string convert_output;
-  CLI::App* convert = app.add_subcommand("convert", "Between mesh files (OBJ, OFF, PLY) and glTF (.glb, .gltf)");
+  CLI::App* convert = app.add_subcommand("convert", "Between mesh files (OBJ, OFF, PLY) and glTF (.glb, .gltf), and between BPT and free-form OBJ");
   convert->add_option("input", convert_input, "Input file")->required();
   convert->add_option("output", convert_output, "Output file")->required();
 
@@ -151,8 +152,7 @@ int main(int argc, char** argv) {
     if (demo->parsed()) patchwork::tools::run_curve_demo(std::cout, degree, evaluations);
     if (patches->parsed()) patchwork::tools::run_patches_report(std::cout, patch_file, json);
     if (info->parsed()) {
-      const bool bpt = std::filesystem::path(info_file).extension() == ".bpt";
-      if (bpt) {
+      if (patchwork::tools::is_patch_file(info_file)) {
         patchwork::tools::run_patches_report(std::cout, info_file, info_json);
       } else {
         patchwork::tools::run_info(std::cout, info_file, info_json);

@@ -20,6 +20,7 @@
 #include "surfaces/tessellator.h"
 #include "tools/default_tolerance.h"
 #include "tools/output_files.h"
+#include "tools/patch_input.h"
 
 namespace patchwork::tools {
 namespace {
@@ -102,7 +103,7 @@ std::vector<double> screen_coverages(const PatchSet& set, const std::vector<Tess
   }
   constexpr double screen_height = 1080.0;
   const double diagonal =
-      bounding_box(std::span<const BezierPatch3>(set.patches()), 1e-6 * set.size()).diagonal().norm();
+      bounding_box(set, 1e-6 * set.size()).diagonal().norm();
   std::vector<double> coverage;
   double previous = 1.0;
   for (const Tessellation& next : coarser) {
@@ -166,7 +167,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     }
   }
 
-  const PatchSet set(read_bpt(arguments.input));
+  const PatchSet set = read_patch_set(arguments.input);
   const auto tessellation_start = std::chrono::steady_clock::now();
   const Tessellation result = tessellate(set, options);
   // Coarser levels of detail, each at its factor times the tolerance.
@@ -205,7 +206,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   // The bound for the file: the mesh's plus what writing moved a vertex (io/gltf.h).
   const double file_error_bound = result.error_bound + rounding[0];
   if (arguments.json) {
-    const nlohmann::json document = {{"patches", set.patches().size()},
+    const nlohmann::json document = {{"patches", set.count()},
                                      {"triangles", result.mesh.triangle_count()},
                                      {"vertices", result.mesh.vertex_count()},
                                      {"seconds", seconds},
@@ -220,7 +221,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     return;
   }
   out << arguments.input << " -> " << arguments.output << "\n";
-  out << "  patches:        " << set.patches().size() << " (" << result.culled_patches << " culled, "
+  out << "  patches:        " << set.count() << " (" << result.culled_patches << " culled, "
       << result.culled_triangles << " triangles saved)\n";
   out << "  triangles:      " << result.mesh.triangle_count() << "\n";
   out << "  vertices:       " << result.mesh.vertex_count() << " (" << result.welded_vertices << " welded points)\n";

@@ -508,6 +508,80 @@ TEST(Cli, InfoOnAPatchSetGivesItsAdjacency) {
   EXPECT_EQ(report["boundary_loops"], 6);
 }
 
+const std::string nurbs_torus = quote(PATCHWORK_DATA_DIR "/nurbs_torus.obj");
+
+// A free-form OBJ (data/nurbs_torus.obj: one rational B-spline surface, the torus R = 2,
+// r = 1/2) goes where a BPT file goes: tessellate with its options and JSON, info with the
+// surfaces and the patch set.
+TEST(Cli, FreeformObjIsTessellatedAndReportedLikeABptFile) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path glb = folder.path() / "torus.glb";
+  const CliRun run =
+      patchwork(folder, "tessellate " + nurbs_torus + " -o " + quote(glb.string()) + " --tolerance 1e-3 --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json summary = nlohmann::json::parse(run.out);
+  EXPECT_EQ(summary["patches"], 16);
+  EXPECT_LE(summary["measured_error"].get<double>(), summary["error_bound"].get<double>());
+  EXPECT_LE(summary["error_bound"].get<double>(), 1e-3);
+  // Every vertex written lies on the torus within the file's bound, and the mesh is closed.
+  const RenderMesh mesh = read_gltf(glb);
+  double worst = 0.0;
+  for (const Vec3& p : mesh.positions) worst = std::max(worst, std::abs(std::hypot(std::hypot(p.x(), p.y()) - 2.0, p.z()) - 0.5));
+  EXPECT_LE(worst, summary["file_error_bound"].get<double>());
+  const TopologyReport topology = analyze(welded_faces(mesh));
+  EXPECT_TRUE(topology.closed);
+  EXPECT_EQ(topology.euler, 0);
+  for (const std::string& options : {std::string("--segments 4 --uv atlas --tangents"),
+                                     std::string("--camera eye=8,-6,5 target=0,0,0 fov=40 width=640 height=480 --pixel-tolerance 1")}) {
+    const CliRun other = patchwork(folder, "tessellate " + nurbs_torus + " -o " + quote(glb.string()) + " " + options);
+    EXPECT_EQ(other.exit_code, 0) << options << ": " << other.err;
+  }
+  const CliRun info = patchwork(folder, "info " + nurbs_torus + " --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const nlohmann::json report = nlohmann::json::parse(info.out);
+  EXPECT_EQ(report["patches"], 16);
+  EXPECT_EQ(report["rational_patches"], 16);
+  EXPECT_EQ(report["closed"], true);
+  ASSERT_EQ(report["surfaces"].size(), 1u);
+  const nlohmann::json& surface = report["surfaces"][0];
+  EXPECT_EQ(surface["name"], "torus");
+  EXPECT_EQ(surface["basis"], "bspline");
+  EXPECT_EQ(surface["rational"], true);
+  EXPECT_EQ(surface["degree"], nlohmann::json({2, 2}));
+  EXPECT_EQ(surface["spans"], nlohmann::json({4, 4}));
+  EXPECT_EQ(surface["continuity_u"], nlohmann::json({0, 0, 0}));
+  EXPECT_NEAR(report["area"].get<double>(), 4 * M_PI * M_PI * 2.0 * 0.5, 1e-8);
+  const CliRun text = patchwork(folder, "info " + nurbs_torus);
+  EXPECT_NE(text.out.find("surface 'torus' (line 87): rational bspline, degrees 2 x 2, 9 x 9 control points, 4 x 4 spans"),
+            std::string::npos)
+      << text.out;
+}
+
+// BPT to free-form OBJ and back gives the same patches bit for bit, and the OBJ tessellates as
+// the BPT does; a rational surface is refused as BPT, naming the file, and nothing is written.
+TEST(Cli, ConvertBetweenBptAndFreeformObj) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path obj = folder.path() / "teapot.obj";
+  const fs::path bpt = folder.path() / "again.bpt";
+  ASSERT_EQ(patchwork(folder, "convert " + teapot + " " + quote(obj.string())).exit_code, 0);
+  ASSERT_EQ(patchwork(folder, "convert " + quote(obj.string()) + " " + quote(bpt.string())).exit_code, 0);
+  const std::vector<BezierPatch3> original = read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt");
+  const std::vector<BezierPatch3> again = read_bpt(bpt);
+  ASSERT_EQ(again.size(), original.size());
+  for (std::size_t k = 0; k < original.size(); ++k) EXPECT_EQ(again[k].control_points(), original[k].control_points()) << k;
+  const CliRun from_bpt = patchwork(folder, "tessellate " + teapot + " -o " + quote((folder.path() / "a.obj").string()) + " --json");
+  const CliRun from_obj = patchwork(folder, "tessellate " + quote(obj.string()) + " -o " + quote((folder.path() / "b.obj").string()) + " --json");
+  ASSERT_EQ(from_obj.exit_code, 0) << from_obj.err;
+  EXPECT_EQ(nlohmann::json::parse(from_obj.out)["triangles"], nlohmann::json::parse(from_bpt.out)["triangles"]);
+  EXPECT_EQ(slurp(folder.path() / "a.obj"), slurp(folder.path() / "b.obj"));
+  const fs::path refused = folder.path() / "torus.bpt";
+  const CliRun rational = patchwork(folder, "convert " + nurbs_torus + " " + quote(refused.string()));
+  EXPECT_EQ(rational.exit_code, 1);
+  EXPECT_EQ(lines(rational.err), 1) << rational.err;
+  EXPECT_NE(rational.err.find("nurbs_torus.obj: 16 of its 16 Bezier patches are rational"), std::string::npos) << rational.err;
+  EXPECT_FALSE(fs::exists(refused));
+}
+
 TEST(Cli, BadInputFailsWithOneLineAndWritesNothing) {
   const testing::TemporaryDirectory folder("patchwork_cli_test");
   const fs::path malformed = folder.path() / "bad.bpt";

@@ -115,10 +115,18 @@ std::vector<BadInput> bad_inputs() {
       {"OBJ", "face with two corners", "two.obj", cube_obj + "f 1 2\n", "info two.obj"},
       {"OBJ", "NaN vertex", "nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "info nan.obj"},
       {"OBJ", "non-UTF-8 bytes in a keyword", "latin1.obj", "v 0 0 0\n\xe9\xe8 1 2 3\n", "info latin1.obj"},
-      {"OBJ", "free-form surfaces (cstype ... end), not a mesh", "nurbs.obj",
-       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\ncstype bspline\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\nparm u 0 0 1 1\n"
+      {"OBJ free-form", "a knot vector that decreases", "knots.obj",
+       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\ncstype bspline\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\nparm u 0 1 0 1\n"
        "parm v 0 0 1 1\nend\n",
-       "info nurbs.obj"},
+       "info knots.obj"},
+      {"OBJ free-form", "a trimming curve (trim), which is not honoured", "trim.obj",
+       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\ncstype bspline\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4\nparm u 0 0 1 1\n"
+       "parm v 0 0 1 1\ntrim 0 1 1\nend\n",
+       "tessellate trim.obj -o out.glb"},
+      {"OBJ free-form", "a surface's range outside its knots", "range.obj",
+       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\ncstype bspline\ndeg 1 1\nsurf 0 2 0 1 1 2 3 4\nparm u 0 0 1 1\n"
+       "parm v 0 0 1 1\nend\n",
+       "convert range.obj out.bpt"},
       {"OBJ", "self-intersecting face (a bow-tie) converted to glTF", "bowtie.obj",
        "v 0 0 0\nv 2 2 0\nv 2 0 0\nv 0 1 0\nf 1 2 3 4\n", "convert bowtie.obj out.glb"},
       {"OFF", "wrong magic", "magic.off", "OF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "info magic.off"},

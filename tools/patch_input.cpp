@@ -1,0 +1,24 @@
+#include "tools/patch_input.h"
+
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "io/bpt.h"
+#include "io/freeform_surfaces.h"
+#include "tools/output_files.h"
+
+namespace patchwork::tools {
+
+bool is_patch_file(const std::string& path) {
+  const std::string extension = lower_extension(path);
+  if (extension == ".bpt") return true;
+  return extension == ".obj" && is_obj_freeform(read_file(path));
+}
+
+PatchSet read_patch_set(const std::string& path) {
+  const std::string extension = lower_extension(path);
+  if (extension == ".bpt") return PatchSet(read_bpt(path));
+  if (extension == ".obj") return PatchSet(freeform_patches(read_obj_freeform(path)));
+  throw InvalidInput(detail::message("a file of patches is .bpt or free-form .obj, not '", extension, "'"));
+}
+
+}  // namespace patchwork::tools
