@@ -26,6 +26,24 @@ std::vector<AnyBezierPatch> freeform_patches(const FreeformDocument& document) {
   return patches;
 }
 
+PatchSet freeform_patch_set(const FreeformDocument& document, double relative_tolerance) {
+  if (document.surfaces.empty()) throw InvalidInput("freeform_patch_set: the document has no surface");
+  std::vector<AnyBezierPatch> patches;
+  std::vector<KnownJoin> joins;
+  for (const FreeformSurface& surface : document.surfaces) {
+    NurbsBezierPatches pieces = freeform_bezier_patches(surface);
+    const auto first = static_cast<std::uint32_t>(patches.size());
+    for (KnownJoin join : pieces.joins) {
+      join.first.patch += first;
+      join.second.patch += first;
+      joins.push_back(join);
+    }
+    patches.insert(patches.end(), std::make_move_iterator(pieces.patches.begin()),
+                   std::make_move_iterator(pieces.patches.end()));
+  }
+  return PatchSet(patches, joins, relative_tolerance);
+}
+
 FreeformSurface freeform_surface(const NurbsSurface& surface, std::string name) {
   FreeformSurface record;
   record.name = std::move(name);

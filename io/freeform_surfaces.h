@@ -25,6 +25,11 @@ NurbsBezierPatches freeform_bezier_patches(const FreeformSurface& surface);
 /// \throws InvalidInput if the document has no surface or a record is not valid.
 std::vector<AnyBezierPatch> freeform_patches(const FreeformDocument& document);
 
+/// The patch set of a document: every surface's patches, joined inside each surface as its knots
+/// say (KnownJoin) and across surfaces and closed seams where their edges meet.
+/// \throws InvalidInput as freeform_patches.
+PatchSet freeform_patch_set(const FreeformDocument& document, double relative_tolerance = 1e-9);
+
 /// The record of a NURBS surface: basis bspline, rational when its weights differ, the range
 /// its domain.
 FreeformSurface freeform_surface(const NurbsSurface& surface, std::string name = {});

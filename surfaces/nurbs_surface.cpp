@@ -91,6 +91,24 @@ NurbsSurface from_homogeneous(KnotVector u, KnotVector v, const std::vector<Vec4
 // Continuity p - m across each interior breakpoint.
 std::vector<int> interior_continuity(const KnotVector& knots) { return knots.breakpoint_continuity(); }
 
+// The joins between neighbouring patches of an extraction (NurbsBezierPatches::joins).
+std::vector<KnownJoin> neighbour_joins(const NurbsBezierPatches& pieces) {
+  std::vector<KnownJoin> joins;
+  for (int t = 0; t < pieces.spans_v; ++t) {
+    for (int s = 0; s < pieces.spans_u; ++s) {
+      const auto k = static_cast<std::uint32_t>(s + pieces.spans_u * t);
+      if (s + 1 < pieces.spans_u) {
+        joins.push_back({{k, PatchEdge::u1}, {k + 1, PatchEdge::u0}, false, pieces.continuity_u[static_cast<std::size_t>(s)]});
+      }
+      if (t + 1 < pieces.spans_v) {
+        joins.push_back({{k, PatchEdge::v1}, {k + static_cast<std::uint32_t>(pieces.spans_u), PatchEdge::v0}, false,
+                         pieces.continuity_v[static_cast<std::size_t>(t)]});
+      }
+    }
+  }
+  return joins;
+}
+
 }  // namespace
 
 NurbsSurface::NurbsSurface(KnotVector u, KnotVector v, const std::vector<Vec3>& points, const std::vector<double>& weights)
@@ -200,6 +218,7 @@ NurbsBezierPatches bezier_patches(const NurbsSurface& surface) {
       }
     }
   }
+  result.joins = neighbour_joins(result);
   return result;
 }
 
@@ -246,6 +265,7 @@ NurbsBezierPatches bezier_patches(const NurbsSurface& surface, double u0, double
   for (int t : sv) {
     for (int s : su) result.patches.push_back(whole.patches[static_cast<std::size_t>(s + whole.spans_u * t)]);
   }
+  result.joins = neighbour_joins(result);
   return result;
 }
 

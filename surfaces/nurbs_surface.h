@@ -21,6 +21,7 @@
 
 #include "curves/knot_vector.h"
 #include "surfaces/bezier_patch.h"
+#include "surfaces/patch_set.h"
 #include "surfaces/rational_bezier_patch.h"
 
 namespace patchwork {
@@ -93,6 +94,9 @@ struct NurbsBezierPatches {
   /// The continuity C^(p - m) across each interior u-breakpoint (spans_u - 1 of them), and v.
   std::vector<int> continuity_u;
   std::vector<int> continuity_v;
+  /// The edges between neighbouring patches, with that continuity: (s, t) u1 against (s+1, t) u0,
+  /// (s, t) v1 against (s, t+1) v0; an edge that collapses (a pole) is left out, as it joins nothing.
+  std::vector<KnownJoin> joins;
 };
 
 /// The Bezier extraction of the file comment.

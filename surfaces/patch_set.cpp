@@ -203,10 +203,13 @@ std::vector<Vec4> homogeneous_row(const std::vector<Vec3>& row, const RationalBe
 }  // namespace
 
 PatchSet::PatchSet(std::vector<BezierPatch3> patches, double relative_tolerance)
-    : PatchSet(Kinds(std::move(patches), {}), relative_tolerance) {}
+    : PatchSet(Kinds(std::move(patches), {}), {}, relative_tolerance) {}
 
 PatchSet::PatchSet(std::span<const AnyBezierPatch> patches, double relative_tolerance)
-    : PatchSet(split_kinds(patches), relative_tolerance) {}
+    : PatchSet(split_kinds(patches), {}, relative_tolerance) {}
+
+PatchSet::PatchSet(std::span<const AnyBezierPatch> patches, std::span<const KnownJoin> joins, double relative_tolerance)
+    : PatchSet(split_kinds(patches), joins, relative_tolerance) {}
 
 const std::vector<BezierPatch3>& PatchSet::patches() const {
   if (rational_count_ > 0) {
@@ -234,7 +237,7 @@ RationalBezierPatch PatchSet::rational_patch(std::uint32_t p) const {
   return as_rational(nets_[p]);
 }
 
-PatchSet::PatchSet(Kinds kinds, double relative_tolerance)
+PatchSet::PatchSet(Kinds kinds, std::span<const KnownJoin> joins, double relative_tolerance)
     : nets_(std::move(kinds.first)), rational_(std::move(kinds.second)) {
   if (nets_.empty()) throw InvalidInput("PatchSet: no patches");
   if (nets_.size() >= 0xffffffffu) throw InvalidInput(detail::message("PatchSet: ", nets_.size(), " patches (limit 2^32 - 1)"));
@@ -285,7 +288,51 @@ PatchSet::PatchSet(Kinds kinds, double relative_tolerance)
     return agreement.points <= tolerance_ && agreement.weights <= relative_tolerance;
   };
   std::vector<bool> matched(edges.size(), false);
+  std::vector<bool> known(edges.size(), false);  // joined by a known join: not matched again
+  const auto shared_edge = [&](std::size_t a, std::size_t b, bool reversed) {
+    const EdgeRef ea = edges[a];
+    const EdgeRef eb = edges[b];
+    const bool rational_pair = rational_edge(a) || rational_edge(b);
+    return SharedEdge{ea, eb, reversed, walks_forward(ea.edge) != (walks_forward(eb.edge) != reversed),
+                      rational_pair ? edge_continuity(patch(ea.patch), ea.edge, patch(eb.patch), eb.edge, reversed)
+                                    : edge_continuity(nets_[ea.patch], ea.edge, nets_[eb.patch], eb.edge, reversed)};
+  };
+  // The known joins first: taken as given, once their points are checked.
+  if (!joins.empty()) {
+    std::unordered_map<std::uint64_t, std::size_t> edge_index;
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      edge_index[(std::uint64_t{edges[k].patch} << 2) | static_cast<std::uint64_t>(edges[k].edge)] = k;
+    }
+    const auto find = [&](const EdgeRef& e, std::size_t j) {
+      if (e.patch >= nets_.size()) throw InvalidInput(detail::message("PatchSet: known join ", j, " names patch ", e.patch, " of ", nets_.size()));
+      const auto it = edge_index.find((std::uint64_t{e.patch} << 2) | static_cast<std::uint64_t>(e.edge));
+      if (it == edge_index.end()) return std::optional<std::size_t>();  // collapsed
+      if (known[it->second]) {
+        throw InvalidInput(detail::message("PatchSet: known join ", j, ": patch ", e.patch, " ", edge_name(e.edge), " is joined twice"));
+      }
+      return std::optional<std::size_t>(it->second);
+    };
+    for (std::size_t j = 0; j < joins.size(); ++j) {
+      const std::optional<std::size_t> first = find(joins[j].first, j);
+      const std::optional<std::size_t> second = find(joins[j].second, j);
+      if (!first || !second) continue;
+      const std::size_t a = *first, b = *second;
+      matched[a] = known[a] = true;
+      matched[b] = known[b] = true;
+      SharedEdge shared = shared_edge(a, b, joins[j].reversed);
+      if (!(shared.continuity.gap <= 2 * tolerance_)) {
+        throw InvalidInput(detail::message("PatchSet: known join ", j, " (patch ", joins[j].first.patch, " ",
+                                           edge_name(joins[j].first.edge), ", patch ", joins[j].second.patch, " ",
+                                           edge_name(joins[j].second.edge), "): the edges are ", shared.continuity.gap,
+                                           " apart"));
+      }
+      shared.continuity.ck = joins[j].ck;
+      shared.continuity.g1 = shared.continuity.max_normal_angle <= 1e-7;
+      shared_.push_back(shared);
+    }
+  }
   for (std::size_t a = 0; a < edges.size(); ++a) {
+    if (known[a]) continue;
     std::vector<std::size_t> candidates;
     ends.near(points[a].front(), [&](std::size_t b) {
       if (b > a) candidates.push_back(b);
@@ -293,6 +340,7 @@ PatchSet::PatchSet(Kinds kinds, double relative_tolerance)
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     for (std::size_t b : candidates) {
+      if (known[b]) continue;
       const bool rational_pair = rational_edge(a) || rational_edge(b);
       std::vector<Vec3> pa = points[a];
       std::vector<Vec3> pb = points[b];
@@ -303,12 +351,7 @@ PatchSet::PatchSet(Kinds kinds, double relative_tolerance)
       }
       for (bool reversed : {false, true}) {
         if (rational_pair ? !rational_match(a, b, reversed) : max_distance(pa, pb, reversed) > tolerance_) continue;
-        const EdgeRef ea = edges[a];
-        const EdgeRef eb = edges[b];
-        SharedEdge shared{ea, eb, reversed, walks_forward(ea.edge) != (walks_forward(eb.edge) != reversed),
-                          rational_pair ? edge_continuity(patch(ea.patch), ea.edge, patch(eb.patch), eb.edge, reversed)
-                                        : edge_continuity(nets_[ea.patch], ea.edge, nets_[eb.patch], eb.edge, reversed)};
-        shared_.push_back(shared);
+        shared_.push_back(shared_edge(a, b, reversed));
         matched[a] = matched[b] = true;
         break;
       }

@@ -86,6 +86,16 @@ struct TouchingPoint {
   std::vector<std::vector<std::uint32_t>> groups;
 };
 
+/// Two patch edges known to be one edge of the surface (a NURBS surface's neighbouring Bezier
+/// pieces), and the continuity C^ck the knots give there, in the surface's own parameter.
+struct KnownJoin {
+  EdgeRef first;
+  EdgeRef second;
+  /// second's boundary curve runs opposite to first's.
+  bool reversed;
+  int ck;
+};
+
 class PatchSet {
  public:
   /// Analyses the adjacency of `patches` with tolerance relative_tolerance * (box diagonal).
@@ -99,6 +109,13 @@ class PatchSet {
   /// they take no part in T-junctions (a rational edge is shared whole, or open).
   /// \throws InvalidInput as the polynomial constructor does.
   explicit PatchSet(std::span<const AnyBezierPatch> patches, double relative_tolerance = 1e-9);
+  /// Patches with joins known beforehand: each is a shared edge as given, its ck the join's
+  /// (gap and G^1 measured as for any shared edge), not searched for; the other edges are matched
+  /// by their points as above (a closed surface's seam, where two surfaces meet).
+  /// A join with a collapsed edge is dropped (a pole joins nothing).
+  /// \throws InvalidInput as above, or if a join names a patch that does not exist or an edge
+  ///         twice, or edges whose control points do not agree within twice the tolerance.
+  PatchSet(std::span<const AnyBezierPatch> patches, std::span<const KnownJoin> joins, double relative_tolerance = 1e-9);
 
   /// The patches, in the order given, when none is rational.
   /// \throws InvalidInput if some patch is rational (its control points alone are not the
@@ -145,7 +162,7 @@ class PatchSet {
   // The nets, and per patch the rational patch where it is one.
   using Kinds = std::pair<std::vector<BezierPatch3>, std::vector<std::optional<RationalBezierPatch>>>;
   static Kinds split_kinds(std::span<const AnyBezierPatch> patches);
-  PatchSet(Kinds kinds, double relative_tolerance);
+  PatchSet(Kinds kinds, std::span<const KnownJoin> joins, double relative_tolerance);
 
   std::vector<BezierPatch3> nets_;
   // Per patch, the rational patch where it is one (empty: none is).

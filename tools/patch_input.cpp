@@ -17,7 +17,7 @@ bool is_patch_file(const std::string& path) {
 PatchSet read_patch_set(const std::string& path) {
   const std::string extension = lower_extension(path);
   if (extension == ".bpt") return PatchSet(read_bpt(path));
-  if (extension == ".obj") return PatchSet(freeform_patches(read_obj_freeform(path)));
+  if (extension == ".obj") return freeform_patch_set(read_obj_freeform(path));
   throw InvalidInput(detail::message("a file of patches is .bpt or free-form .obj, not '", extension, "'"));
 }
 

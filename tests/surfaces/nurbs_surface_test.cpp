@@ -133,6 +133,42 @@ TEST(NurbsSurface, ContinuityAcrossPatchesIsThatOfTheKnots) {
   }
 }
 
+// The patch set of an extraction takes the neighbours' joins from the knots (their continuity in
+// the surface's parameter, here with spans of unequal length, where the pieces' own parameters
+// are only C^0), and finds the closed seam from the points.
+TEST(NurbsSurface, PatchSetTakesTheJoinsFromTheKnots) {
+  const NurbsSurface torus = nurbs_torus(Vec3::Zero(), 2.0, 0.5);
+  const NurbsBezierPatches pieces = bezier_patches(torus);
+  EXPECT_EQ(pieces.joins.size(), 24u);  // 4 x 4 patches: 3 x 4 joins each way
+  const PatchSet known(pieces.patches, pieces.joins);
+  const PatchSet found(pieces.patches);
+  EXPECT_EQ(known.shared_edges().size(), 32u);
+  EXPECT_EQ(found.shared_edges().size(), 32u);
+  EXPECT_TRUE(report(known).closed);
+  // Unequal spans: knots 0, 1, 3 in u (C^2 there, cubic); the pieces' own parameters do not
+  // join C^1, the knots say C^2.
+  const KnotVector U(3, {0, 0, 0, 0, 1, 3, 3, 3, 3});
+  const KnotVector V(1, {0, 0, 1, 1});
+  std::vector<Vec3> points;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 5; ++i) points.emplace_back(i, j, std::cos(1.1 * i) + 0.3 * j);
+  }
+  const NurbsBezierPatches uneven = bezier_patches(NurbsSurface(U, V, points));
+  ASSERT_EQ(uneven.joins.size(), 1u);
+  const PatchSet with_knots(uneven.patches, uneven.joins);
+  const PatchSet from_points(uneven.patches);
+  ASSERT_EQ(with_knots.shared_edges().size(), 1u);
+  ASSERT_EQ(from_points.shared_edges().size(), 1u);
+  EXPECT_EQ(with_knots.shared_edges()[0].continuity.ck, 2);
+  EXPECT_EQ(from_points.shared_edges()[0].continuity.ck, 0);
+  EXPECT_TRUE(with_knots.shared_edges()[0].continuity.g1);
+  // A join that is not one is refused: patch 0's u0 edge is not patch 1's u1.
+  const std::vector<KnownJoin> wrong = {{{0, PatchEdge::u0}, {1, PatchEdge::u1}, false, 2}};
+  EXPECT_THROW(PatchSet(uneven.patches, wrong), InvalidInput);
+  const std::vector<KnownJoin> twice = {uneven.joins[0], uneven.joins[0]};
+  EXPECT_THROW(PatchSet(uneven.patches, twice), InvalidInput);
+}
+
 TEST(NurbsShapes, SphereIsExactWithItsPolesAndArea) {
   const Vec3 c(1, -2, 0.5);
   const double r = 3.0;
