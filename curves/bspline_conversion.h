@@ -66,7 +66,7 @@ NurbsCurve<Dim> elevate_degree(const NurbsCurve<Dim>& curve, int times = 1);
 /// each piece's homogeneous points scaled so the joints agree, the curve of each piece
 /// unchanged). circle_arc's pieces give an exact NURBS arc this way.
 /// \throws InvalidInput if there is no piece, the degrees differ or are 0, or a piece does not
-///         start (within 1e-12 relative) where the previous one ends.
+///         start where the previous one ends (within 1e-12 max(1, |end|)).
 template <int Dim>
 NurbsCurve<Dim> join_rational_pieces(const std::vector<RationalBezierCurve<Dim>>& pieces);
 

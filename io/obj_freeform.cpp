@@ -472,18 +472,10 @@ void write_obj_freeform(const std::filesystem::path& path, const FreeformDocumen
 }
 
 bool is_obj_freeform(std::string_view text) {
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(start, end - start);
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first != std::string_view::npos) {
-      const std::size_t last = line.find_first_of(" \t\r\\", first);
-      const std::string_view keyword = line.substr(first, last == std::string_view::npos ? std::string_view::npos : last - first);
-      if (detail::is_obj_freeform_statement(keyword)) return true;
-    }
-    start = end + 1;
+  // The readers' own tokenizer: comments, continuation lines and blanks as they see them.
+  TextLines lines(text, "", '#', /*continuation=*/true);
+  for (auto tokens = lines.next_line(); !tokens.empty(); tokens = lines.next_line()) {
+    if (detail::is_obj_freeform_statement(tokens[0].text)) return true;
   }
   return false;
 }

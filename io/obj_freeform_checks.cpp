@@ -85,6 +85,17 @@ std::optional<FreeformProblem> direction_problem(const FreeformRecordView& recor
   if (!(low < high)) {
     return problem(FreeformPart::parameter_count, 0, message(parm, ": the domain [", low, ", ", high, "] is empty"));
   }
+  // Inside the domain a knot stands at most p times (p + 1 would cut the surface in two there).
+  if (basis == FreeformBasis::bspline) {
+    const auto degree = static_cast<std::size_t>(p);
+    for (std::size_t k = degree; k < b.size(); ++k) {
+      if (b[k] > low && b[k] < high && b[k - degree] == b[k]) {
+        return problem(FreeformPart::parameter, k,
+                       message(parm, ": knot ", b[k], " stands more than degree = ", p,
+                               " times inside the domain [", low, ", ", high, "]"));
+      }
+    }
+  }
   const std::string range = record.directions == 1 ? "the range" : message("the ", direction_name(direction), " range");
   const double start = record.range[2 * static_cast<std::size_t>(direction)];
   const double end = record.range[2 * static_cast<std::size_t>(direction) + 1];

@@ -1,5 +1,6 @@
 #include "surfaces/nurbs_shapes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -38,10 +39,15 @@ NurbsSurface revolve(const NurbsCurve<3>& profile, const Vec3& axis_point, const
   const int count_v = profile.control_point_count();
   std::vector<Vec3> points(static_cast<std::size_t>(count_u) * static_cast<std::size_t>(count_v));
   std::vector<double> weights(points.size());
+  // A profile point within rounding of the axis (a circle's cos(pi/2) = 6e-17) is on it: its row
+  // collapses to one point, a pole.
+  double reach = 0.0;
+  for (int j = 0; j < count_v; ++j) reach = std::max(reach, (profile.control_point(j) - axis_point).norm());
   for (int j = 0; j < count_v; ++j) {
     const Vec3 P = profile.control_point(j);
     const Vec3 O = axis_point + (P - axis_point).dot(A) * A;
-    const double r = (P - O).norm();
+    const double distance = (P - O).norm();
+    const double r = distance <= 1e-14 * reach ? 0.0 : distance;
     // On the axis any X serves: every point of the row is O.
     const Vec3 X = r > 0.0 ? Vec3((P - O) / r) : A.unitOrthogonal();
     const Vec3 Y = A.cross(X);

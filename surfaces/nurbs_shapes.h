@@ -8,9 +8,10 @@
 //   P_ij = O_j + r_j (x_i X_j + y_i Y_j),   w_ij = w_i^arc w_j,
 // with (x_i, y_i), w_i^arc the unit arc's control points and weights (quadratic pieces of at most
 // 90 degrees, circle_arc, joined by join_rational_pieces). u runs around the axis
-// (counter-clockwise seen from +A), v along the profile; a profile point on the axis (r_j = 0)
-// gives a collapsed row, a pole. A revolution through 2 pi closes: the first and last columns
-// are equal, and the patch set joins them.
+// (counter-clockwise seen from +A), v along the profile; a profile point on the axis (r_j = 0,
+// or within 1e-14 of the profile's reach from the axis point, as a circle's cos(pi/2) is) gives
+// a collapsed row, a pole. A revolution through 2 pi closes: the first and last columns agree
+// to rounding (sin 2 pi), and the patch set joins them.
 // Extrusion: P_i0 = P_i, P_i1 = P_i + d, weights w_i in both rows, degree 1 along v.
 //
 // Normals (S_u x S_v): the sphere, torus, cylinder and cone below point outward.

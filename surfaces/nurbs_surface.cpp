@@ -23,12 +23,17 @@ std::vector<Vec4> homogenize(const KnotVector& u, const KnotVector& v, const std
   if (!weights.empty() && weights.size() != count) {
     throw InvalidInput(detail::message("NurbsSurface: ", weights.size(), " weights for ", count, " control points"));
   }
+  for (std::size_t k = 0; k < weights.size(); ++k) {
+    if (!std::isfinite(weights[k]) || !(weights[k] > 0.0)) {
+      throw InvalidInput(detail::message("NurbsSurface: weight ", k, " = ", weights[k], " is not positive and finite"));
+    }
+  }
+  // Equal weights c are the B-spline of the points: stored as 1, so that knot insertion (whose
+  // affine combinations of c need not give c back exactly) keeps the surface polynomial.
+  const bool equal = std::all_of(weights.begin(), weights.end(), [&](double w) { return w == weights.front(); });
   std::vector<Vec4> homogeneous(count);
   for (std::size_t k = 0; k < count; ++k) {
-    const double w = weights.empty() ? 1.0 : weights[k];
-    if (!std::isfinite(w) || !(w > 0.0)) {
-      throw InvalidInput(detail::message("NurbsSurface: weight ", k, " = ", w, " is not positive and finite"));
-    }
+    const double w = equal ? 1.0 : weights[k];
     if (!points[k].allFinite()) throw InvalidInput(detail::message("NurbsSurface: control point ", k, " is not finite"));
     homogeneous[k] << w * points[k], w;
   }
@@ -88,8 +93,6 @@ NurbsSurface from_homogeneous(KnotVector u, KnotVector v, const std::vector<Vec4
   return NurbsSurface(std::move(u), std::move(v), points, weights);
 }
 
-// Continuity p - m across each interior breakpoint.
-std::vector<int> interior_continuity(const KnotVector& knots) { return knots.breakpoint_continuity(); }
 
 // The joins between neighbouring patches of an extraction (NurbsBezierPatches::joins).
 std::vector<KnownJoin> neighbour_joins(const NurbsBezierPatches& pieces) {
@@ -143,17 +146,23 @@ Vec3 unit_normal(const NurbsSurface& surface, double u, double v) {
   // In the parameters (s, t) in [0,1]^2 of the span's Bezier piece: derivatives scale by the
   // span lengths (chain rule), and the limit direction looks towards the piece's centre.
   const double du = U[su + 1] - U[su], dv = V[sv + 1] - V[sv];
-  const int order = std::min(p + q, 12) + 1;
-  PartialDerivatives<3> F = partial_derivatives(surface, u, v, order);
-  for (int a = 0; a <= order; ++a) {
-    for (int b = 0; a + b <= order; ++b) F.at(a, b) *= std::pow(du, a) * std::pow(dv, b);
-  }
-  Eigen::AlignedBox3d box(surface.control_point(0, 0));
-  for (int j = 0; j < surface.count_v(); ++j) {
-    for (int i = 0; i < surface.count_u(); ++i) box.extend(surface.control_point(i, j));
+  // Vanishing is judged against the span's control points, the net of the piece's derivatives.
+  Eigen::AlignedBox3d box(surface.control_point(su - p, sv - q));
+  for (int j = sv - q; j <= sv; ++j) {
+    for (int i = su - p; i <= su; ++i) box.extend(surface.control_point(i, j));
   }
   const double scale = box.diagonal().norm();
-  return detail::limit_unit_normal(F, (u - U[su]) / du, (v - V[sv]) / dv, scale, p, q);
+  const auto in_piece = [&](int order) {
+    PartialDerivatives<3> F = partial_derivatives(surface, u, v, order);
+    for (int a = 0; a <= order; ++a) {
+      for (int b = 0; a + b <= order; ++b) F.at(a, b) *= std::pow(du, a) * std::pow(dv, b);
+    }
+    return F;
+  };
+  const PartialDerivatives<3> first = in_piece(1);
+  const Vec3 normal = first.at(1, 0).cross(first.at(0, 1));
+  if (normal.norm() > 1e-12 * std::max(p * q, 1) * scale * scale) return normal.normalized();
+  return detail::limit_unit_normal(in_piece(std::min(p + q, 12) + 1), (u - U[su]) / du, (v - V[sv]) / dv, scale, p, q);
 }
 
 NurbsSurface insert_knot_u(const NurbsSurface& surface, double u, int times) {
@@ -183,8 +192,8 @@ NurbsBezierPatches bezier_patches(const NurbsSurface& surface) {
   NurbsBezierPatches result;
   result.breaks_u = surface.knots_u().breakpoints();
   result.breaks_v = surface.knots_v().breakpoints();
-  result.continuity_u = interior_continuity(surface.knots_u());
-  result.continuity_v = interior_continuity(surface.knots_v());
+  result.continuity_u = surface.knots_u().breakpoint_continuity();
+  result.continuity_v = surface.knots_v().breakpoint_continuity();
   // Every row cut into its u-pieces: pieces[j][s] has p + 1 homogeneous points.
   std::vector<std::vector<BezierCurve<4>>> row_pieces;
   for (int j = 0; j < surface.count_v(); ++j) row_pieces.push_back(bezier_pieces(row(surface, j)));

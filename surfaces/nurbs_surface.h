@@ -28,7 +28,8 @@ namespace patchwork {
 
 class NurbsSurface {
  public:
-  /// Knots U and V, control points P_ij (u fastest) and weights (empty: all 1).
+  /// Knots U and V, control points P_ij (u fastest) and weights (empty: all 1; all equal: stored
+  /// as 1, the same surface).
   /// \throws InvalidInput if the counts do not match the knots (U.control_point_count() x
   ///         V.control_point_count()), a coordinate is not finite or a weight not positive and finite.
   NurbsSurface(KnotVector u, KnotVector v, const std::vector<Vec3>& points, const std::vector<double>& weights = {});
@@ -37,7 +38,9 @@ class NurbsSurface {
   const KnotVector& knots_u() const noexcept { return u_; }
   /// The knots along v.
   const KnotVector& knots_v() const noexcept { return v_; }
+  /// The degree p along u.
   int degree_u() const noexcept { return u_.degree(); }
+  /// The degree q along v.
   int degree_v() const noexcept { return v_.degree(); }
   /// Control points along u.
   int count_u() const noexcept { return u_.control_point_count(); }
@@ -59,6 +62,8 @@ class NurbsSurface {
   /// The homogeneous point (w P, w)_ij.
   const Vec4& at(int i, int j) const { return homogeneous_[static_cast<std::size_t>(i + count_u() * j)]; }
 
+  friend bool operator==(const NurbsSurface&, const NurbsSurface&) = default;
+
  private:
   KnotVector u_;
   KnotVector v_;
@@ -72,7 +77,9 @@ PartialDerivatives<3> partial_derivatives(const NurbsSurface& surface, double u,
 
 /// The unit normal S_u x S_v / |S_u x S_v|, the limit normal where it vanishes (a NURBS sphere's
 /// poles), as unit_normal of a patch; from the Bezier piece that holds (u, v).
-/// \throws NumericalError where the surface is degenerate around (u, v).
+/// Vanishing is judged against the size of the span's control points.
+/// \throws InvalidInput outside the domain; NumericalError where the surface is degenerate
+///         around (u, v).
 Vec3 unit_normal(const NurbsSurface& surface, double u, double v);
 
 /// The same surface with the knot u inserted `times` times into U (Boehm on every row of

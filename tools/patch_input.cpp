@@ -14,6 +14,13 @@ bool is_patch_file(const std::string& path) {
   return extension == ".obj" && is_obj_freeform(read_file(path));
 }
 
+void refuse_patch_file_as_mesh(const std::string& command, const std::string& path) {
+  if (is_patch_file(path)) {
+    throw InvalidInput(detail::message(command, " reads meshes; this is a file of patches (curved surfaces): ",
+                                       "'patchwork tessellate' makes a mesh of it"));
+  }
+}
+
 PatchSet read_patch_set(const std::string& path) {
   const std::string extension = lower_extension(path);
   if (extension == ".bpt") return PatchSet(read_bpt(path));

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 
 #include "io/freeform_surfaces.h"
@@ -15,9 +16,9 @@ namespace {
 
 // What a free-form OBJ file's surfaces are: basis, degrees, control points, spans over the
 // range, rational or not, and the continuity the knots give across each interior breakpoint.
-nlohmann::json surfaces_of(const std::string& path) {
+nlohmann::json surfaces_of(const FreeformDocument& document) {
   nlohmann::json surfaces = nlohmann::json::array();
-  for (const FreeformSurface& surface : read_obj_freeform(path).surfaces) {
+  for (const FreeformSurface& surface : document.surfaces) {
     const NurbsBezierPatches pieces = freeform_bezier_patches(surface);
     const auto [count_u, count_v] = control_point_counts(surface);
     surfaces.push_back({{"name", surface.name},
@@ -44,7 +45,10 @@ std::string joined(const nlohmann::json& values) {
 
 void run_patches_report(std::ostream& out, const std::string& path, bool json) {
   const auto start = std::chrono::steady_clock::now();
-  const PatchSet set = read_patch_set(path);
+  // A free-form file is read once, for the set and for its surfaces.
+  const std::optional<FreeformDocument> document =
+      lower_extension(path) == ".obj" ? std::optional(read_obj_freeform(path)) : std::nullopt;
+  const PatchSet set = document ? freeform_patch_set(*document) : read_patch_set(path);
   const PatchSetReport summary = report(set);
   double total_area = 0.0;
   double area_error = 0.0;
@@ -55,7 +59,7 @@ void run_patches_report(std::ostream& out, const std::string& path, bool json) {
     total_area += a.value;
     area_error += a.error_estimate;
   }
-  const nlohmann::json surfaces = lower_extension(path) == ".obj" ? surfaces_of(path) : nlohmann::json();
+  const nlohmann::json surfaces = document ? surfaces_of(*document) : nlohmann::json();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (json) {
     nlohmann::json document = nlohmann::json::parse(to_json(summary));

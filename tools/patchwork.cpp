@@ -39,19 +39,19 @@ int main(int argc, char** argv) {
 
   std::string patch_file;
   bool json = false;
-  CLI::App* patches = app.add_subcommand("patches", "Adjacency, continuity and area of a BPT patch set");
+  CLI::App* patches = app.add_subcommand("patches", "Adjacency, continuity and area of a patch set (BPT or free-form OBJ)");
   patches->add_option("file", patch_file, "BPT or free-form OBJ file (e.g. data/teapot.bpt)")->required();
   patches->add_flag("--json", json, "Print the report as JSON");
 
   std::string info_file;
   bool info_json = false;
-  CLI::App* info = app.add_subcommand("info", "Topology of a mesh (OBJ, OFF, PLY) or patch set (BPT) file");
+  CLI::App* info = app.add_subcommand("info", "Topology of a mesh (OBJ, OFF, PLY) or patch set (BPT, free-form OBJ) file");
   info->add_option("file", info_file, "Mesh, BPT or free-form OBJ file")->required();
   info->add_flag("--json", info_json, "Print the report as JSON");
 
   const std::string default_relative_text = patchwork::detail::message(patchwork::tools::default_relative_tolerance);
   patchwork::tools::TessellateArguments tess;
-  CLI::App* tessellate = app.add_subcommand("tessellate", "Patch set (BPT) to a render-ready mesh within an error");
+  CLI::App* tessellate = app.add_subcommand("tessellate", "Patch set (BPT, free-form OBJ) to a render-ready mesh within an error");
   tessellate->add_option("input", tess.input, "BPT or free-form OBJ (NURBS) file")->required();
   tessellate->add_option("-o,--output", tess.output, "Output .glb, .gltf, .obj, .off or .ply")->required();
   auto* tolerance = tessellate->add_option("--tolerance", tess.tolerance, "Absolute tolerance (model units)");

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "io/bpt.h"
 #include "io/gltf.h"
 #include "io/mesh_file.h"
 #include "surfaces/patch_bounding_box.h"

@@ -74,13 +74,24 @@ TEST(FreeformSurfaces, BezierBasisRecordsAndTheWayBack) {
   record.u0 = 0, record.u1 = 3, record.v0 = 0, record.v1 = 1;
   const NurbsSurface surface = nurbs_surface(record);
   EXPECT_EQ(surface.knots_u().knots(), (std::vector<double>{0, 0, 0, 0, 1, 1, 1, 3, 3, 3, 3}));
-  EXPECT_EQ(freeform_bezier_patches(record).patches.size(), 2u);
+  const NurbsBezierPatches two = freeform_bezier_patches(record);
+  ASSERT_EQ(two.patches.size(), 2u);
+  // Segment k on [breaks k, k+1] has the record's points 3k .. 3k + 3: the Bezier pieces themselves.
+  for (double u : {0.0, 0.5, 1.0, 2.2, 3.0}) {
+    for (double v : {0.0, 1.0}) EXPECT_LT((evaluate_pieces(two, u, v) - surface.evaluate(u, v)).norm(), 1e-13) << u;
+  }
+  EXPECT_EQ(std::get<BezierPatch3>(two.patches[1]).control_point(0, 1), record.points[3 + 7]);
   // A NURBS surface to a record and back: the same knots, points and weights.
   const NurbsSurface torus = nurbs_torus(Vec3(1, 2, 3), 2.0, 0.5);
   const NurbsSurface again = nurbs_surface(freeform_surface(torus, "torus"));
   EXPECT_EQ(again.knots_u(), torus.knots_u());
   EXPECT_EQ(again.knots_v(), torus.knots_v());
-  EXPECT_EQ(again.homogeneous(), torus.homogeneous());
+  for (int j = 0; j < torus.count_v(); ++j) {
+    for (int i = 0; i < torus.count_u(); ++i) {
+      EXPECT_LT((again.control_point(i, j) - torus.control_point(i, j)).norm(), 1e-15);
+      EXPECT_NEAR(again.weight(i, j), torus.weight(i, j), 1e-16);
+    }
+  }
   // A Bezier patch as a record: one segment, the patch itself.
   const BezierPatch3 patch(2, 1, {Vec3(0, 0, 0), Vec3(1, 0, 1), Vec3(2, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 1), Vec3(2, 1, 0)});
   const NurbsBezierPatches one = freeform_bezier_patches(freeform_surface(patch));

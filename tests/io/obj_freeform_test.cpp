@@ -724,6 +724,36 @@ TEST(ObjFreeform, MalformedRecordsAreAParseErrorAtTheRightPlace) {
   });
 }
 
+// A knot inside the domain standing p + 1 times would cut the surface in two (a B-spline allows
+// at most p there): refused where it stands, not later by the surface type without a line.
+TEST(ObjFreeform, InteriorKnotsStandAtMostDegreeTimes) {
+  std::string text;
+  for (int k = 0; k < 8; ++k) text += "v " + std::to_string(k % 4) + " " + std::to_string(k / 4) + " 0\n";
+  text += "cstype bspline\ndeg 1 1\nsurf 0 1 0 1 1 2 3 4 5 6 7 8\nparm u 0 0 0.5 0.5 1 1\nparm v 0 0 1 1\nend\n";
+  try {
+    (void)parse_obj_freeform(text, "double.obj");
+    FAIL() << "no ParseError";
+  } catch (const ParseError& e) {
+    EXPECT_NE(std::string(e.what()).find("double.obj:12:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("knot 0.5 stands more than degree = 1 times inside the domain"), std::string::npos)
+        << e.what();
+  }
+  // Once (degree 1: C^0 there) it is a surface of two spans.
+  const std::string three = text.substr(0, text.find("cstype")) +
+                            "cstype bspline\ndeg 1 1\nsurf 0 1 0 1 1 2 3 5 6 7\nparm u 0 0 0.5 1 1\nparm v 0 0 1 1\nend\n";
+  EXPECT_NO_THROW((void)parse_obj_freeform(three, "once.obj"));
+}
+
+// Free-form detection sees what the readers see: comments, continuation lines, blanks.
+TEST(ObjFreeform, DetectionTokenizesAsTheReadersDo) {
+  EXPECT_TRUE(is_obj_freeform("v 0 0 0\n  \tsurf 0 1 0 1 1\n"));
+  EXPECT_TRUE(is_obj_freeform("cstype bspline # a comment\n"));
+  EXPECT_FALSE(is_obj_freeform("v 0 0 0\nf 1 2 3\n# cstype in a comment\n"));
+  EXPECT_FALSE(is_obj_freeform("#cstype glued to the comment sign\nf 1 2 3\n"));
+  // "g part \" continued by "end" is the group name "part end", not an end statement.
+  EXPECT_FALSE(is_obj_freeform("v 0 0 0\ng part \\\nend\nf 1 1 1\n"));
+}
+
 TEST(ObjFreeform, UnsupportedStatementsAreRefusedByName) {
   for (const char* keyword :
        {"trim", "hole", "scrv", "sp", "con", "bmat", "step", "curv2", "mg", "call", "csh", "f", "l", "p"}) {

@@ -582,6 +582,38 @@ TEST(Cli, ConvertBetweenBptAndFreeformObj) {
   EXPECT_FALSE(fs::exists(refused));
 }
 
+// Two B-spline surfaces that meet along an edge (the second continues the first in x), each
+// over a range inside its knots: one patch set, one component; `patches` lists both surfaces;
+// `convert` writes the file again, and refuses it as a mesh.
+TEST(Cli, SeveralFreeformSurfacesFormOnePatchSet) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path obj = folder.path() / "two.obj";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0.5\nv 2 0 0\nv 0 1 0\nv 1 1 0.5\nv 2 1 0\n"
+                        "v 3 0 1\nv 4 0 0\nv 3 1 1\nv 4 1 0\n"
+                        "g first\ncstype bspline\ndeg 2 1\nsurf 0 1 0 1 1 2 3 4 5 6\nparm u 0 0 0 1 1 1\nparm v 0 0 1 1\nend\n"
+                        "g second\ncstype bspline\ndeg 2 1\nsurf 0 1 0 1 3 7 8 6 9 10\nparm u 0 0 0 1 1 1\nparm v 0 0 1 1\nend\n";
+  const CliRun run = patchwork(folder, "patches " + quote(obj.string()) + " --json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report["patches"], 2);
+  EXPECT_EQ(report["shared_edges"], 1);
+  ASSERT_EQ(report["surfaces"].size(), 2u);
+  EXPECT_EQ(report["surfaces"][1]["name"], "second");
+  EXPECT_EQ(report["surfaces"][1]["rational"], false);
+  const fs::path out = folder.path() / "out.obj";
+  const CliRun tess = patchwork(folder, "tessellate " + quote(obj.string()) + " -o " + quote(out.string()) + " --tolerance 1e-3");
+  ASSERT_EQ(tess.exit_code, 0) << tess.err;
+  EXPECT_EQ(analyze(read_mesh(out)).components, 1);
+  const fs::path again = folder.path() / "again.obj";
+  ASSERT_EQ(patchwork(folder, "convert " + quote(obj.string()) + " " + quote(again.string())).exit_code, 0);
+  EXPECT_EQ(nlohmann::json::parse(patchwork(folder, "patches " + quote(again.string()) + " --json").out)["shared_edges"], 1);
+  const CliRun mesh = patchwork(folder, "convert " + quote(obj.string()) + " " + quote((folder.path() / "x.glb").string()));
+  EXPECT_EQ(mesh.exit_code, 1);
+  EXPECT_NE(mesh.err.find("two.obj: convert to a mesh format reads meshes; this is a file of patches"), std::string::npos)
+      << mesh.err;
+  EXPECT_FALSE(fs::exists(folder.path() / "x.glb"));
+}
+
 TEST(Cli, BadInputFailsWithOneLineAndWritesNothing) {
   const testing::TemporaryDirectory folder("patchwork_cli_test");
   const fs::path malformed = folder.path() / "bad.bpt";
