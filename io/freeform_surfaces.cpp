@@ -6,9 +6,10 @@ namespace patchwork {
 
 NurbsSurface nurbs_surface(const FreeformSurface& surface) {
   validate(surface);
-  return NurbsSurface(KnotVector(surface.degree_u, bspline_knots(surface.basis, surface.degree_u, surface.parameters_u)),
-                      KnotVector(surface.degree_v, bspline_knots(surface.basis, surface.degree_v, surface.parameters_v)),
-                      surface.points, surface.weights);
+  return NurbsSurface(
+      KnotVector(surface.degree_u, bspline_knots(surface.basis, surface.degree_u, surface.parameters_u)),
+      KnotVector(surface.degree_v, bspline_knots(surface.basis, surface.degree_v, surface.parameters_v)),
+      surface.points, surface.weights);
 }
 
 NurbsBezierPatches freeform_bezier_patches(const FreeformSurface& surface) {

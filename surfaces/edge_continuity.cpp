@@ -96,8 +96,9 @@ EdgeContinuity edge_continuity(const BezierPatch3& first_patch, PatchEdge first_
   const int along = std::max(degree_along(first_patch, first_edge), degree_along(second_patch, second_edge));
   const BezierPatch3 first = elevated_along(first_patch, first_edge, along);
   const BezierPatch3 second = elevated_along(second_patch, second_edge, along);
-  EdgeContinuity result{detail::max_distance(row_from_edge(first, first_edge, 0), row_from_edge(second, second_edge, 0), reversed),
-                        columns_ck(first, first_edge, second, second_edge, reversed, relative_tolerance), false, 0.0};
+  EdgeContinuity result{
+      detail::max_distance(row_from_edge(first, first_edge, 0), row_from_edge(second, second_edge, 0), reversed),
+      columns_ck(first, first_edge, second, second_edge, reversed, relative_tolerance), false, 0.0};
   // G^1 from sampled normals.
   result.max_normal_angle = max_normal_angle([&](double u, double v) { return unit_normal(first, u, v); }, first_edge,
                                              [&](double u, double v) { return unit_normal(second, u, v); }, second_edge,
@@ -106,12 +107,14 @@ EdgeContinuity edge_continuity(const BezierPatch3& first_patch, PatchEdge first_
   return result;
 }
 
-EdgeContinuity edge_continuity(const AnyBezierPatch& first_patch, PatchEdge first_edge, const AnyBezierPatch& second_patch,
-                               PatchEdge second_edge, bool reversed, double relative_tolerance) {
+EdgeContinuity edge_continuity(const AnyBezierPatch& first_patch, PatchEdge first_edge,
+                               const AnyBezierPatch& second_patch, PatchEdge second_edge, bool reversed,
+                               double relative_tolerance) {
   const auto* first_polynomial = std::get_if<BezierPatch3>(&first_patch);
   const auto* second_polynomial = std::get_if<BezierPatch3>(&second_patch);
   if (first_polynomial != nullptr && second_polynomial != nullptr) {
-    return edge_continuity(*first_polynomial, first_edge, *second_polynomial, second_edge, reversed, relative_tolerance);
+    return edge_continuity(*first_polynomial, first_edge, *second_polynomial, second_edge, reversed,
+                           relative_tolerance);
   }
   const auto rational = [](const AnyBezierPatch& patch) {
     const auto* p = std::get_if<BezierPatch3>(&patch);
@@ -133,26 +136,30 @@ EdgeContinuity edge_continuity(const AnyBezierPatch& first_patch, PatchEdge firs
   second = BezierPatch4(second.degree_u(), second.degree_v(), std::move(scaled));
   EdgeContinuity result{agreement.gap, columns_ck(first, first_edge, second, second_edge, reversed, relative_tolerance),
                         false, 0.0};
-  result.max_normal_angle = max_normal_angle(
-      [&](double u, double v) { return unit_normal(first_rational, u, v); }, first_edge,
-      [&](double u, double v) { return unit_normal(second_rational, u, v); }, second_edge, reversed,
-      4 * std::max(first.degree_u(), first.degree_v()) + 1);
+  result.max_normal_angle =
+      max_normal_angle([&](double u, double v) { return unit_normal(first_rational, u, v); }, first_edge,
+                       [&](double u, double v) { return unit_normal(second_rational, u, v); }, second_edge, reversed,
+                       4 * std::max(first.degree_u(), first.degree_v()) + 1);
   result.g1 = result.ck >= 0 && result.max_normal_angle <= g1_angle;
   return result;
 }
 
-std::vector<std::vector<Vec3>> continue_across(const BezierPatch3& patch, PatchEdge edge, int k, int degree_across_new) {
+std::vector<std::vector<Vec3>> continue_across(const BezierPatch3& patch, PatchEdge edge, int k,
+                                               int degree_across_new) {
   if (k < 0 || k > degree_across_new) {
     throw InvalidInput(detail::message("continue_across: order k = ", k, " not in [0, ", degree_across_new, "]"));
   }
   const int along = degree_along(patch, edge);
   const int across = degree_across(patch, edge);
-  std::vector<std::vector<Vec3>> rows(static_cast<std::size_t>(k) + 1, std::vector<Vec3>(static_cast<std::size_t>(along) + 1));
+  std::vector<std::vector<Vec3>> rows(static_cast<std::size_t>(k) + 1,
+                                      std::vector<Vec3>(static_cast<std::size_t>(along) + 1));
   for (int i = 0; i <= along; ++i) {
     std::vector<Vec3> column(static_cast<std::size_t>(across) + 1);
-    for (int l = 0; l <= across; ++l) column[static_cast<std::size_t>(across - l)] = row_from_edge(patch, edge, l)[static_cast<std::size_t>(i)];
+    for (int l = 0; l <= across; ++l)
+      column[static_cast<std::size_t>(across - l)] = row_from_edge(patch, edge, l)[static_cast<std::size_t>(i)];
     const std::vector<Vec3> next = continue_ck(BezierCurve3(std::move(column)), k, degree_across_new, 1.0);
-    for (int j = 0; j <= k; ++j) rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = next[static_cast<std::size_t>(j)];
+    for (int j = 0; j <= k; ++j)
+      rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = next[static_cast<std::size_t>(j)];
   }
   return rows;
 }

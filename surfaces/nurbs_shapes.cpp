@@ -85,7 +85,8 @@ NurbsSurface nurbs_sphere(const Vec3& center, double radius) {
 NurbsSurface nurbs_torus(const Vec3& center, double major, double minor) {
   check_positive(minor, "nurbs_torus: minor radius");
   if (!(major > minor) || !std::isfinite(major)) {
-    throw InvalidInput(detail::message("nurbs_torus: major radius ", major, " is not finite and above the minor ", minor));
+    throw InvalidInput(
+        detail::message("nurbs_torus: major radius ", major, " is not finite and above the minor ", minor));
   }
   const NurbsCurve<3> circle =
       nurbs_circle_arc(center + major * Vec3::UnitX(), Vec3::UnitX(), Vec3::UnitZ(), minor, 0.0, 2 * std::numbers::pi);
@@ -102,8 +103,8 @@ NurbsSurface nurbs_cylinder(const Vec3& center, double radius, double height) {
 NurbsSurface nurbs_cone(const Vec3& center, double radius, double height) {
   check_positive(radius, "nurbs_cone: radius");
   check_positive(height, "nurbs_cone: height");
-  const NurbsCurve<3> side(KnotVector(1, {0, 0, 1, 1}), {center + radius * Vec3::UnitX(), center + height * Vec3::UnitZ()},
-                           {1.0, 1.0});
+  const NurbsCurve<3> side(KnotVector(1, {0, 0, 1, 1}),
+                           {center + radius * Vec3::UnitX(), center + height * Vec3::UnitZ()}, {1.0, 1.0});
   return revolve(side, center, Vec3::UnitZ(), 2 * std::numbers::pi);
 }
 

@@ -15,7 +15,8 @@ namespace {
 
 std::vector<Vec4> homogenize(const KnotVector& u, const KnotVector& v, const std::vector<Vec3>& points,
                              const std::vector<double>& weights) {
-  const std::size_t count = static_cast<std::size_t>(u.control_point_count()) * static_cast<std::size_t>(v.control_point_count());
+  const std::size_t count =
+      static_cast<std::size_t>(u.control_point_count()) * static_cast<std::size_t>(v.control_point_count());
   if (points.size() != count) {
     throw InvalidInput(detail::message("NurbsSurface: ", points.size(), " control points, the knots carry ",
                                        u.control_point_count(), " x ", v.control_point_count()));
@@ -34,7 +35,8 @@ std::vector<Vec4> homogenize(const KnotVector& u, const KnotVector& v, const std
   std::vector<Vec4> homogeneous(count);
   for (std::size_t k = 0; k < count; ++k) {
     const double w = equal ? 1.0 : weights[k];
-    if (!points[k].allFinite()) throw InvalidInput(detail::message("NurbsSurface: control point ", k, " is not finite"));
+    if (!points[k].allFinite())
+      throw InvalidInput(detail::message("NurbsSurface: control point ", k, " is not finite"));
     homogeneous[k] << w * points[k], w;
   }
   return homogeneous;
@@ -93,7 +95,6 @@ NurbsSurface from_homogeneous(KnotVector u, KnotVector v, const std::vector<Vec4
   return NurbsSurface(std::move(u), std::move(v), points, weights);
 }
 
-
 // The joins between neighbouring patches of an extraction (NurbsBezierPatches::joins).
 std::vector<KnownJoin> neighbour_joins(const NurbsBezierPatches& pieces) {
   std::vector<KnownJoin> joins;
@@ -101,10 +102,13 @@ std::vector<KnownJoin> neighbour_joins(const NurbsBezierPatches& pieces) {
     for (int s = 0; s < pieces.spans_u; ++s) {
       const auto k = static_cast<std::uint32_t>(s + pieces.spans_u * t);
       if (s + 1 < pieces.spans_u) {
-        joins.push_back({{k, PatchEdge::u1}, {k + 1, PatchEdge::u0}, false, pieces.continuity_u[static_cast<std::size_t>(s)]});
+        joins.push_back(
+            {{k, PatchEdge::u1}, {k + 1, PatchEdge::u0}, false, pieces.continuity_u[static_cast<std::size_t>(s)]});
       }
       if (t + 1 < pieces.spans_v) {
-        joins.push_back({{k, PatchEdge::v1}, {k + static_cast<std::uint32_t>(pieces.spans_u), PatchEdge::v0}, false,
+        joins.push_back({{k, PatchEdge::v1},
+                         {k + static_cast<std::uint32_t>(pieces.spans_u), PatchEdge::v0},
+                         false,
                          pieces.continuity_v[static_cast<std::size_t>(t)]});
       }
     }
@@ -114,7 +118,8 @@ std::vector<KnownJoin> neighbour_joins(const NurbsBezierPatches& pieces) {
 
 }  // namespace
 
-NurbsSurface::NurbsSurface(KnotVector u, KnotVector v, const std::vector<Vec3>& points, const std::vector<double>& weights)
+NurbsSurface::NurbsSurface(KnotVector u, KnotVector v, const std::vector<Vec3>& points,
+                           const std::vector<double>& weights)
     : u_(std::move(u)), v_(std::move(v)), homogeneous_(homogenize(u_, v_, points, weights)) {
   rational_ = std::any_of(homogeneous_.begin(), homogeneous_.end(),
                           [&](const Vec4& h) { return h[3] != homogeneous_.front()[3]; });
@@ -171,7 +176,8 @@ NurbsSurface insert_knot_u(const NurbsSurface& surface, double u, int times) {
   const int count_u = rows.front().knot_vector().control_point_count();
   std::vector<Vec4> homogeneous;
   for (int j = 0; j < surface.count_v(); ++j) {
-    for (int i = 0; i < count_u; ++i) homogeneous.push_back(rows[static_cast<std::size_t>(j)].control_points()[static_cast<std::size_t>(i)]);
+    for (int i = 0; i < count_u; ++i)
+      homogeneous.push_back(rows[static_cast<std::size_t>(j)].control_points()[static_cast<std::size_t>(i)]);
   }
   return from_homogeneous(rows.front().knot_vector(), surface.knots_v(), homogeneous);
 }
@@ -182,7 +188,8 @@ NurbsSurface insert_knot_v(const NurbsSurface& surface, double v, int times) {
   const int count_v = columns.front().knot_vector().control_point_count();
   std::vector<Vec4> homogeneous;
   for (int j = 0; j < count_v; ++j) {
-    for (int i = 0; i < surface.count_u(); ++i) homogeneous.push_back(columns[static_cast<std::size_t>(i)].control_points()[static_cast<std::size_t>(j)]);
+    for (int i = 0; i < surface.count_u(); ++i)
+      homogeneous.push_back(columns[static_cast<std::size_t>(i)].control_points()[static_cast<std::size_t>(j)]);
   }
   return from_homogeneous(surface.knots_u(), columns.front().knot_vector(), homogeneous);
 }
@@ -204,9 +211,11 @@ NurbsBezierPatches bezier_patches(const NurbsSurface& surface) {
     for (int r = 0; r <= p; ++r) {
       std::vector<Vec4> points;
       for (int j = 0; j < surface.count_v(); ++j) {
-        points.push_back(row_pieces[static_cast<std::size_t>(j)][static_cast<std::size_t>(s)].control_points()[static_cast<std::size_t>(r)]);
+        points.push_back(row_pieces[static_cast<std::size_t>(j)][static_cast<std::size_t>(s)]
+                             .control_points()[static_cast<std::size_t>(r)]);
       }
-      column_pieces[static_cast<std::size_t>(s)].push_back(bezier_pieces(BSplineCurve<4>(surface.knots_v(), std::move(points))));
+      column_pieces[static_cast<std::size_t>(s)].push_back(
+          bezier_pieces(BSplineCurve<4>(surface.knots_v(), std::move(points))));
     }
   }
   result.spans_v = static_cast<int>(column_pieces.front().front().size());
@@ -215,8 +224,9 @@ NurbsBezierPatches bezier_patches(const NurbsSurface& surface) {
       std::vector<Vec4> net;  // (p + 1) x (q + 1), u fastest
       for (int c = 0; c <= q; ++c) {
         for (int r = 0; r <= p; ++r) {
-          net.push_back(column_pieces[static_cast<std::size_t>(s)][static_cast<std::size_t>(r)][static_cast<std::size_t>(t)]
-                            .control_points()[static_cast<std::size_t>(c)]);
+          net.push_back(
+              column_pieces[static_cast<std::size_t>(s)][static_cast<std::size_t>(r)][static_cast<std::size_t>(t)]
+                  .control_points()[static_cast<std::size_t>(c)]);
         }
       }
       const RationalBezierPatch patch{BezierPatch4(p, q, std::move(net))};
@@ -236,7 +246,8 @@ NurbsBezierPatches bezier_patches(const NurbsSurface& surface, double u0, double
   const KnotVector& V = surface.knots_v();
   if (!(U.a() <= u0 && u0 < u1 && u1 <= U.b()) || !(V.a() <= v0 && v0 < v1 && v1 <= V.b())) {
     throw InvalidInput(detail::message("bezier_patches: the range [", u0, ", ", u1, "] x [", v0, ", ", v1,
-                                       "] is not inside the domain [", U.a(), ", ", U.b(), "] x [", V.a(), ", ", V.b(), "]"));
+                                       "] is not inside the domain [", U.a(), ", ", U.b(), "] x [", V.a(), ", ", V.b(),
+                                       "]"));
   }
   NurbsSurface cut = surface;
   // An interior end becomes a breakpoint of multiplicity p: the pieces then end there.
@@ -269,8 +280,10 @@ NurbsBezierPatches bezier_patches(const NurbsSurface& surface, double u0, double
   result.breaks_u.push_back(whole.breaks_u[static_cast<std::size_t>(su.back()) + 1]);
   for (int t : sv) result.breaks_v.push_back(whole.breaks_v[static_cast<std::size_t>(t)]);
   result.breaks_v.push_back(whole.breaks_v[static_cast<std::size_t>(sv.back()) + 1]);
-  for (std::size_t k = 0; k + 1 < su.size(); ++k) result.continuity_u.push_back(whole.continuity_u[static_cast<std::size_t>(su[k])]);
-  for (std::size_t k = 0; k + 1 < sv.size(); ++k) result.continuity_v.push_back(whole.continuity_v[static_cast<std::size_t>(sv[k])]);
+  for (std::size_t k = 0; k + 1 < su.size(); ++k)
+    result.continuity_u.push_back(whole.continuity_u[static_cast<std::size_t>(su[k])]);
+  for (std::size_t k = 0; k + 1 < sv.size(); ++k)
+    result.continuity_v.push_back(whole.continuity_v[static_cast<std::size_t>(sv[k])]);
   for (int t : sv) {
     for (int s : su) result.patches.push_back(whole.patches[static_cast<std::size_t>(s + whole.spans_u * t)]);
   }

@@ -35,10 +35,14 @@ BezierPatch<Dim> elevated_along(const BezierPatch<Dim>& patch, PatchEdge edge, i
 // (u, v) of the point at s in [0,1] along boundary_curve(edge).
 inline Vec2 edge_parameter(PatchEdge edge, double s) {
   switch (edge) {
-    case PatchEdge::v0: return {s, 0.0};
-    case PatchEdge::u1: return {1.0, s};
-    case PatchEdge::v1: return {s, 1.0};
-    case PatchEdge::u0: return {0.0, s};
+    case PatchEdge::v0:
+      return {s, 0.0};
+    case PatchEdge::u1:
+      return {1.0, s};
+    case PatchEdge::v1:
+      return {s, 1.0};
+    case PatchEdge::u0:
+      return {0.0, s};
   }
   return {s, 0.0};
 }
@@ -46,7 +50,8 @@ inline Vec2 edge_parameter(PatchEdge edge, double s) {
 // Largest distance between corresponding points, b read backwards when reversed.
 inline double max_distance(const std::vector<Vec3>& a, const std::vector<Vec3>& b, bool reversed) {
   double result = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) result = std::max(result, (a[i] - b[reversed ? b.size() - 1 - i : i]).norm());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    result = std::max(result, (a[i] - b[reversed ? b.size() - 1 - i : i]).norm());
   return result;
 }
 

@@ -93,7 +93,8 @@ TEST(FreeformSurfaces, BezierBasisRecordsAndTheWayBack) {
     }
   }
   // A Bezier patch as a record: one segment, the patch itself.
-  const BezierPatch3 patch(2, 1, {Vec3(0, 0, 0), Vec3(1, 0, 1), Vec3(2, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 1), Vec3(2, 1, 0)});
+  const BezierPatch3 patch(2, 1,
+                           {Vec3(0, 0, 0), Vec3(1, 0, 1), Vec3(2, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 1), Vec3(2, 1, 0)});
   const NurbsBezierPatches one = freeform_bezier_patches(freeform_surface(patch));
   ASSERT_EQ(one.patches.size(), 1u);
   EXPECT_EQ(std::get<BezierPatch3>(one.patches[0]).control_points(), patch.control_points());

@@ -30,7 +30,8 @@ TEST(NurbsShapes, SphereIsExactWithItsPolesAndArea) {
   EXPECT_LT((sphere.evaluate(0.3, 0.0) - (c - r * Vec3::UnitZ())).norm(), 1e-14);
   EXPECT_LT((sphere.evaluate(0.3, 1.0) - (c + r * Vec3::UnitZ())).norm(), 1e-14);
   double total = 0.0;
-  for (const AnyBezierPatch& patch : bezier_patches(sphere).patches) total += area(std::get<RationalBezierPatch>(patch), 1e-12).value;
+  for (const AnyBezierPatch& patch : bezier_patches(sphere).patches)
+    total += area(std::get<RationalBezierPatch>(patch), 1e-12).value;
   EXPECT_NEAR(total, 4 * std::numbers::pi * r * r, 1e-9);
 }
 
@@ -69,7 +70,8 @@ TEST(NurbsShapes, ClosedShapesAreClosedPatchSets) {
 // The circle as one NURBS curve; pieces whose homogeneous points are scaled (a different first
 // weight) join into the same curve.
 TEST(NurbsShapes, CircleArcsJoinTheirPieces) {
-  const NurbsCurve<3> circle = nurbs_circle_arc(Vec3(1, 2, 3), Vec3::UnitX(), Vec3::UnitY(), 2.0, 0.0, 2 * std::numbers::pi);
+  const NurbsCurve<3> circle =
+      nurbs_circle_arc(Vec3(1, 2, 3), Vec3::UnitX(), Vec3::UnitY(), 2.0, 0.0, 2 * std::numbers::pi);
   for (int k = 0; k <= 40; ++k) EXPECT_NEAR((circle.evaluate(k / 40.0) - Vec3(1, 2, 3)).norm(), 2.0, 1e-14);
   std::vector<RationalBezierCurve<3>> pieces = circle_arc<3>(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 1.0, 0.0, 2.0);
   ASSERT_GE(pieces.size(), 2u);
@@ -86,7 +88,8 @@ TEST(NurbsShapes, CircleArcsJoinTheirPieces) {
 
 TEST(NurbsShapes, ExtrusionAndThePolesAreExact) {
   // The extrusion of an arc: a quarter cylinder; its v = 1 row is the arc moved.
-  const NurbsSurface wall = extrude(nurbs_circle_arc(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 1.0, 0.0, 1.0), Vec3(0, 0, 2));
+  const NurbsSurface wall =
+      extrude(nurbs_circle_arc(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 1.0, 0.0, 1.0), Vec3(0, 0, 2));
   for (double u : {0.0, 0.4, 1.0}) {
     EXPECT_NEAR(std::hypot(wall.evaluate(u, 1.0).x(), wall.evaluate(u, 1.0).y()), 1.0, 1e-15);
     EXPECT_EQ(wall.evaluate(u, 1.0).z(), 2.0);

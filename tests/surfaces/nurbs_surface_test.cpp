@@ -29,7 +29,8 @@ rc::Gen<NurbsSurface> nurbs_surface(bool rational) {
     std::vector<Vec3> points;
     std::vector<double> weights;
     for (int k = 0; k < count; ++k) {
-      points.emplace_back(*rc::gen::inRange(-80, 81) / 8.0, *rc::gen::inRange(-80, 81) / 8.0, *rc::gen::inRange(-80, 81) / 8.0);
+      points.emplace_back(*rc::gen::inRange(-80, 81) / 8.0, *rc::gen::inRange(-80, 81) / 8.0,
+                          *rc::gen::inRange(-80, 81) / 8.0);
       weights.push_back(rational ? *rc::gen::inRange(2, 33) / 8.0 : 1.0);
     }
     return NurbsSurface(U, V, points, weights);
@@ -53,8 +54,8 @@ Located locate(const NurbsBezierPatches& pieces, double u, double v) {
   };
   const std::size_t a = find(pieces.breaks_u, u), b = find(pieces.breaks_v, v);
   const double du = pieces.breaks_u[a + 1] - pieces.breaks_u[a], dv = pieces.breaks_v[b + 1] - pieces.breaks_v[b];
-  return {a + static_cast<std::size_t>(pieces.spans_u) * b, (u - pieces.breaks_u[a]) / du, (v - pieces.breaks_v[b]) / dv,
-          du, dv};
+  return {a + static_cast<std::size_t>(pieces.spans_u) * b, (u - pieces.breaks_u[a]) / du,
+          (v - pieces.breaks_v[b]) / dv, du, dv};
 }
 
 PartialDerivatives<3> patch_partials(const AnyBezierPatch& patch, double s, double t, int order) {
@@ -89,13 +90,15 @@ RC_GTEST_PROP(NurbsSurface, ExtractedPatchesAreTheSurfaceWithItsDerivatives, ())
     const AnyBezierPatch& piece = pieces.patches[at.patch];
     try {
       const Vec3 n = unit_normal(surface, u, v);
-      const Vec3 m = std::holds_alternative<BezierPatch3>(piece) ? unit_normal(std::get<BezierPatch3>(piece), at.s, at.t)
-                                                                : unit_normal(std::get<RationalBezierPatch>(piece), at.s, at.t);
+      const Vec3 m = std::holds_alternative<BezierPatch3>(piece)
+                         ? unit_normal(std::get<BezierPatch3>(piece), at.s, at.t)
+                         : unit_normal(std::get<RationalBezierPatch>(piece), at.s, at.t);
       RC_ASSERT((n - m).norm() <= 1e-6);
     } catch (const NumericalError&) {
       // A random net can be degenerate around a point (no normal): both must say so.
-      RC_ASSERT_THROWS_AS(std::holds_alternative<BezierPatch3>(piece) ? unit_normal(std::get<BezierPatch3>(piece), at.s, at.t)
-                                                                     : unit_normal(std::get<RationalBezierPatch>(piece), at.s, at.t),
+      RC_ASSERT_THROWS_AS(std::holds_alternative<BezierPatch3>(piece)
+                              ? unit_normal(std::get<BezierPatch3>(piece), at.s, at.t)
+                              : unit_normal(std::get<RationalBezierPatch>(piece), at.s, at.t),
                           NumericalError);
     }
   }
@@ -183,7 +186,6 @@ TEST(NurbsSurface, PatchSetTakesTheJoinsFromTheKnots) {
   const std::vector<KnownJoin> twice = {uneven.joins[0], uneven.joins[0]};
   EXPECT_THROW(PatchSet(uneven.patches, twice), InvalidInput);
 }
-
 
 // Equal weights c != 1 are stored as 1: a cut by knot insertion (Boehm's affine combinations of
 // c are not always c) keeps the surface polynomial.

@@ -105,11 +105,11 @@ inline std::vector<AnyBezierPatch> wedge(double radius, double height, const Vec
   };
   const double r = radius, h = height;
   return {
-      rational([&](int i, int j) { return rim(i, h * j); }),                                   // curved: u along the arc, v up
-      rational([&](int i, int j) { return j == 0 ? Vec3(0, 0, 0) : rim(i, 0.0); }),            // bottom: centre to rim
-      rational([&](int i, int j) { return j == 0 ? rim(i, h) : Vec3(0, 0, h); }),              // top: rim to centre
-      flat(Vec3(0, 0, 0), Vec3(r, 0, 0), Vec3(0, 0, h), Vec3(r, 0, h)),                        // y = 0: u along x, v up
-      flat(Vec3(0, 0, 0), Vec3(0, 0, h), Vec3(0, r, 0), Vec3(0, r, h)),                        // x = 0: u up, v along y
+      rational([&](int i, int j) { return rim(i, h * j); }),                         // curved: u along the arc, v up
+      rational([&](int i, int j) { return j == 0 ? Vec3(0, 0, 0) : rim(i, 0.0); }),  // bottom: centre to rim
+      rational([&](int i, int j) { return j == 0 ? rim(i, h) : Vec3(0, 0, h); }),    // top: rim to centre
+      flat(Vec3(0, 0, 0), Vec3(r, 0, 0), Vec3(0, 0, h), Vec3(r, 0, h)),              // y = 0: u along x, v up
+      flat(Vec3(0, 0, 0), Vec3(0, 0, h), Vec3(0, r, 0), Vec3(0, r, h)),              // x = 0: u up, v along y
   };
 }
 

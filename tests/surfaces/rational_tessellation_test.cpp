@@ -118,7 +118,6 @@ TEST(RationalTessellation, UniformAndCameraModesTakeRationalPieces) {
   EXPECT_LE(seen.measured_error, seen.error_bound);
 }
 
-
 // Strongly uneven weights (a middle weight 8 pulls the surface towards its control point, and
 // F_uu is far from the net's): the pieces carry the rational quotient-rule bounds, and the
 // measured error stays within the bound.
@@ -211,7 +210,6 @@ TEST(RationalTessellation, GridEvaluationMatchesPointwiseEvaluation) {
   }
 }
 
-
 // The NURBS shapes (surfaces/nurbs_shapes.h) through extraction and the tessellator: closed
 // where they should be, every vertex, edge midpoint and centroid within the bound of the
 // implicit surface, exact normals (the sphere's and cone's collapsed rows included).
@@ -231,7 +229,8 @@ TEST(NurbsTessellation, ShapesAreWatertightAndWithinTheTolerance) {
        [](const Vec3& p) { return p.normalized(); }, 2, 0},
       {"torus", nurbs_torus(Vec3::Zero(), R, r), [&](const Vec3& p) { return testing::torus_distance(p, R, r); },
        [&](const Vec3& p) { return testing::torus_normal(p, R); }, 0, 0},
-      {"cylinder", nurbs_cylinder(Vec3::Zero(), 1.0, h), [](const Vec3& p) { return std::abs(std::hypot(p.x(), p.y()) - 1.0); },
+      {"cylinder", nurbs_cylinder(Vec3::Zero(), 1.0, h),
+       [](const Vec3& p) { return std::abs(std::hypot(p.x(), p.y()) - 1.0); },
        [](const Vec3& p) { return Vec3(p.x(), p.y(), 0).normalized(); }, 0, 2},
       {"cone", nurbs_cone(Vec3::Zero(), 1.0, h),
        [&](const Vec3& p) { return std::abs((std::hypot(p.x(), p.y()) - (1.0 - p.z() / h)) * std::cos(slant)); },
