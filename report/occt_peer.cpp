@@ -55,7 +55,7 @@ void check_arguments(std::span<const BezierPatch3> patches, double linear_deflec
 }
 
 // The face on a whole surface, trimmed by its natural bounds.
-TopoDS_Face make_face(const Handle(Geom_Surface)& surface) {
+TopoDS_Face make_face(const Handle(Geom_Surface) & surface) {
   // TolDegen: boundary edges shorter than this (the teapot's collapsed edges, a sphere's poles)
   // become degenerate.
   BRepBuilderAPI_MakeFace maker(surface, Precision::Confusion());
@@ -80,8 +80,8 @@ void check_degrees(const char* function, const NurbsSurface& surface) {
   const int p = surface.degree_u();
   const int q = surface.degree_v();
   if (p < 1 || q < 1 || p > max_degree || q > max_degree) {
-    throw InvalidInput(patchwork::detail::message(function, ": degrees (", p, ", ", q, "), Open CASCADE takes 1..",
-                                                  max_degree));
+    throw InvalidInput(
+        patchwork::detail::message(function, ": degrees (", p, ", ", q, "), Open CASCADE takes 1..", max_degree));
   }
 }
 
@@ -99,7 +99,7 @@ std::pair<TColStd_Array1OfReal, TColStd_Array1OfInteger> distinct_knots(const Kn
   }
   const int n = static_cast<int>(values.size());
   std::pair<TColStd_Array1OfReal, TColStd_Array1OfInteger> result{TColStd_Array1OfReal(1, n),
-                                                                   TColStd_Array1OfInteger(1, n)};
+                                                                  TColStd_Array1OfInteger(1, n)};
   for (int k = 0; k < n; ++k) {
     result.first.SetValue(k + 1, values[static_cast<std::size_t>(k)]);
     result.second.SetValue(k + 1, multiplicities[static_cast<std::size_t>(k)]);
@@ -223,8 +223,13 @@ OcctRun occt_tessellate(std::span<const BezierPatch3> patches, double linear_def
   return timed_mesh([&] { return make_faces(patches); }, linear_deflection, angular_deflection, repeats);
 }
 
-OcctRun occt_tessellate(const NurbsSurface& surface, double linear_deflection, double angular_deflection,
-                        int repeats) {
+OcctRun timed_enough(const std::function<OcctRun(int repeats)>& tessellate, int repeats) {
+  OcctRun run = tessellate(1);
+  if (run.seconds_median < 1.0 && repeats > 1) run = tessellate(repeats);
+  return run;
+}
+
+OcctRun occt_tessellate(const NurbsSurface& surface, double linear_deflection, double angular_deflection, int repeats) {
   check_meshing_arguments(linear_deflection, angular_deflection, repeats);
   check_degrees("occt_tessellate", surface);
   return timed_mesh([&] { return make_compound({make_face(make_bspline_surface(surface))}); }, linear_deflection,
@@ -251,7 +256,8 @@ std::vector<SurfaceJet> occt_evaluate(const NurbsSurface& surface, std::span<con
       gp_Pnt ignored;
       gp_Vec du, dv;
       bspline->D1(uv.x(), uv.y(), ignored, du, dv);
-      jets.push_back({Vec3(point.X(), point.Y(), point.Z()), Vec3(du.X(), du.Y(), du.Z()), Vec3(dv.X(), dv.Y(), dv.Z())});
+      jets.push_back(
+          {Vec3(point.X(), point.Y(), point.Z()), Vec3(du.X(), du.Y(), du.Z()), Vec3(dv.X(), dv.Y(), dv.Z())});
     }
     return jets;
   });

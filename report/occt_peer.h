@@ -16,6 +16,7 @@
 // No Open CASCADE header is included here: only report/occt_peer.cpp sees them.
 
 #include <cstddef>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -49,12 +50,15 @@ std::string occt_version();
 OcctRun occt_tessellate(std::span<const BezierPatch3> patches, double linear_deflection, double angular_deflection,
                         int repeats);
 
+/// `tessellate(1)`, and if that took under a second `tessellate(repeats)` (the first call then a
+/// warm-up): a fine deflection takes tens of seconds a run, and one timed run there is enough.
+OcctRun timed_enough(const std::function<OcctRun(int repeats)>& tessellate, int repeats);
+
 /// Meshes one face on the Geom_BSplineSurface of `surface` (trimmed by its domain,
 /// BRepBuilderAPI_MakeFace) as occt_tessellate meshes a patch's face.
 /// \throws InvalidInput as occt_tessellate (degrees within [1, 25], Geom_BSplineSurface's limits).
 /// \throws NumericalError if OCCT fails or leaves the face without a triangulation.
-OcctRun occt_tessellate(const NurbsSurface& surface, double linear_deflection, double angular_deflection,
-                        int repeats);
+OcctRun occt_tessellate(const NurbsSurface& surface, double linear_deflection, double angular_deflection, int repeats);
 
 /// A surface point and its first partial derivatives.
 struct SurfaceJet {
