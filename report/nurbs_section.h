@@ -13,6 +13,8 @@
 // surface once, the closest-point projection onto the surface maps the mesh onto the surface,
 // so every surface point x is the foot of a mesh point y and dist(x, mesh) <= |x - y| = d(y):
 // surface -> mesh <= mesh -> surface, and the two-sided Hausdorff distance is the one measured.
+// (Open CASCADE's meshes of both are checked closed in tests/report/occt_peer_test.cpp,
+// patchwork's in tests/surfaces/rational_tessellation_test.cpp.)
 //
 // The ideal uniform count at sagitta e: equilateral triangles whose corners lie on a sphere of
 // radius 1 / kappa have circumradius rho with e = rho^2 kappa / 2 to leading order, so area

@@ -3,14 +3,17 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/errors.h"
 #include "io/bpt.h"
+#include "report/nurbs_section.h"
 #include "surfaces/nurbs_shapes.h"
 #include "surfaces/surface_normal.h"
 #include "tests/surfaces/nurbs_generators.h"
@@ -226,6 +229,38 @@ TEST(OcctBSplineSurface, SphereAndTorusAgreeWithNurbsSurface) {
       }
     }
     EXPECT_EQ(disagreement_with_occt(surface, parameters), "");
+  }
+}
+
+// The NURBS section's meter (report/nurbs_section.h) takes the distance of the mesh to the surface
+// as the two-sided one because a closed mesh wraps the surface: OCCT's meshes of the sphere and
+// the torus are closed once nodes closer than 1e-9 are welded (the seam's and the poles' nodes
+// repeat) and the triangles this collapses are dropped (at the poles), every edge shared by exactly
+// two triangles, and their nodes lie on the surface.
+TEST(OcctPeer, NurbsSphereAndTorusMeshesAreClosedAndOnTheSurface) {
+  for (const ExactShape& shape : exact_shapes()) {
+    for (const double deflection : {1e-2, 1e-3}) {
+      const PeerMesh mesh = occt_tessellate(shape.surface, deflection, 0.5, 1).mesh;
+      std::map<std::array<long long, 3>, std::uint32_t> welded;
+      std::vector<std::uint32_t> id;
+      for (const Vec3& x : mesh.positions) {
+        EXPECT_LE(shape.distance(x), 1e-12) << shape.name;
+        const std::array<long long, 3> key{std::llround(x.x() * 1e9), std::llround(x.y() * 1e9),
+                                           std::llround(x.z() * 1e9)};
+        id.push_back(welded.emplace(key, static_cast<std::uint32_t>(welded.size())).first->second);
+      }
+      std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+      for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const std::array<std::uint32_t, 3> c{id[mesh.indices[3 * t]], id[mesh.indices[3 * t + 1]],
+                                             id[mesh.indices[3 * t + 2]]};
+        // Collapsed by the welding (two corners at a pole, at the seam's two copies): no area.
+        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
+        for (int k = 0; k < 3; ++k) ++uses[{std::min(c[k], c[(k + 1) % 3]), std::max(c[k], c[(k + 1) % 3])}];
+      }
+      std::size_t open = 0;
+      for (const auto& [edge, count] : uses) open += count != 2;
+      EXPECT_EQ(open, 0u) << shape.name << ", deflection " << deflection << ", " << uses.size() << " edges";
+    }
   }
 }
 
