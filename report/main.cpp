@@ -30,7 +30,9 @@
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/bpt.h"
+#include "report/format.h"
 #include "report/hard_cases.h"
+#include "report/nurbs_section.h"
 #include "report/report_section.h"
 #include "report/teapot_runs.h"
 #include "report/tradeoff.h"
@@ -49,23 +51,6 @@ struct Arguments {
   std::string commit = "unknown";
   bool quick = false;
 };
-
-std::string text(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
-
-// A count with thousands separators: 12,826.
-std::string count(std::size_t n) {
-  const std::string digits = std::to_string(n);
-  std::string grouped;
-  for (std::size_t k = 0; k < digits.size(); ++k) {
-    if (k > 0 && (digits.size() - k) % 3 == 0) grouped += ',';
-    grouped += digits[k];
-  }
-  return grouped;
-}
 
 std::string optional_text(const char* format, double value) { return std::isnan(value) ? "-" : text(format, value); }
 
@@ -114,14 +99,6 @@ std::string run_table(const std::vector<Run>& runs, double diagonal, bool patchw
         << text("%.3g", run.distance.mesh_to_surface.distance / diagonal) << " |\n";
   }
   return out.str();
-}
-
-std::vector<TradeoffPoint> tradeoff(const std::vector<Run>& runs, double diagonal, bool by_time) {
-  std::vector<TradeoffPoint> points;
-  for (const Run& run : runs) {
-    points.push_back({run.distance.hausdorff() / diagonal, by_time ? run.seconds : static_cast<double>(run.triangles)});
-  }
-  return points;
 }
 
 std::string data_file_name(const std::string& method) {
@@ -505,6 +482,8 @@ int run(const Arguments& arguments) {
   const std::string throughput = throughput_section(teapot, quick);
   const ReportSection hard_cases = hard_case_section(arguments.data, quick);
   const std::string benchmarks = benchmark_section(arguments.bench_dir, arguments.data);
+  std::cerr << "patchwork_report: NURBS sphere and torus\n";
+  const NurbsSection nurbs = nurbs_section(arguments.data, quick);
 
   const std::string gnuplot = plots(methods) + hard_cases.gnuplot;
   write_file_atomically(arguments.data / "plots.gp", gnuplot);
@@ -577,13 +556,14 @@ int run(const Arguments& arguments) {
     for (const std::string& m : ratios.missed) md << "- " << m << "\n";
     md << "\n" << why_missed(ratios, methods);
   }
-  md << throughput << hard_cases.markdown << "\n" << benchmarks;
+  md << throughput << hard_cases.markdown << "\n" << benchmarks << nurbs.section.markdown;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   md << "---\nThis run took " << text("%.0f", seconds) << " s.\n";
   write_file_atomically(arguments.out, md.str());
   std::cerr << "patchwork_report: wrote " << arguments.out << " in " << text("%.0f", seconds) << " s\n";
   for (const std::string& v : violations) std::cerr << "patchwork_report: " << v << "\n";
-  return violations.empty() ? 0 : 1;
+  for (const std::string& v : nurbs.violations) std::cerr << "patchwork_report: " << v << "\n";
+  return violations.empty() && nurbs.violations.empty() ? 0 : 1;
 }
 
 }  // namespace

@@ -7,9 +7,16 @@
 // meshes every face's boundary on its own, so neighbouring faces do not share vertices. Each
 // face's nodes are appended as they are (no welding); triangles are wound so that their normal
 // agrees with F_u x F_v of the patch (flipped for a reversed face).
+//
+// A NurbsSurface becomes a Geom_BSplineSurface with the same degrees, poles, weights and knots:
+// pole (i+1, j+1) = P_ij (OCCT's poles are indexed (U, V), 1-based; patchwork's are listed u
+// fastest), and the knot vectors as OCCT wants them, distinct values with their multiplicities
+// (a clamped cubic's 0 0 0 0 0.5 1 1 1 1 is values 0 0.5 1, multiplicities 4 1 4). The cross-check
+// (occt_evaluate) and the NURBS section of the report (one face on that surface) share it.
 // No Open CASCADE header is included here: only report/occt_peer.cpp sees them.
 
 #include <cstddef>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -17,6 +24,7 @@
 #include "core/types.h"
 #include "report/peer_mesh.h"
 #include "surfaces/bezier_patch.h"
+#include "surfaces/nurbs_surface.h"
 
 namespace patchwork::performance {
 
@@ -41,6 +49,30 @@ std::string occt_version();
 /// \throws NumericalError if OCCT fails or leaves a face without a triangulation.
 OcctRun occt_tessellate(std::span<const BezierPatch3> patches, double linear_deflection, double angular_deflection,
                         int repeats);
+
+/// `tessellate(1)`, and if that took under a second `tessellate(repeats)` (the first call then a
+/// warm-up): a fine deflection takes tens of seconds a run, and one timed run there is enough.
+OcctRun timed_enough(const std::function<OcctRun(int repeats)>& tessellate, int repeats);
+
+/// Meshes one face on the Geom_BSplineSurface of `surface` (trimmed by its domain,
+/// BRepBuilderAPI_MakeFace) as occt_tessellate meshes a patch's face.
+/// \throws InvalidInput as occt_tessellate (degrees within [1, 25], Geom_BSplineSurface's limits).
+/// \throws NumericalError if OCCT fails or leaves the face without a triangulation.
+OcctRun occt_tessellate(const NurbsSurface& surface, double linear_deflection, double angular_deflection, int repeats);
+
+/// A surface point and its first partial derivatives.
+struct SurfaceJet {
+  Vec3 point;
+  Vec3 du;
+  Vec3 dv;
+};
+
+/// Open CASCADE's evaluation of `surface` at each (u, v): the point by Geom_BSplineSurface::D0,
+/// the derivatives by D1 (the surface built as in the file comment).
+/// \throws InvalidInput if a degree is outside [1, 25] or a parameter is not finite or outside the
+///         domain (OCCT would extrapolate there).
+/// \throws NumericalError if OCCT refuses the surface.
+std::vector<SurfaceJet> occt_evaluate(const NurbsSurface& surface, std::span<const Vec2> parameters);
 
 namespace detail {
 

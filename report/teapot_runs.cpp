@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "io/obj.h"
+#include "report/format.h"
 #include "surfaces/tessellator.h"
 
 #ifdef PATCHWORK_HAVE_OCCT
@@ -18,32 +19,6 @@
 
 namespace patchwork::performance {
 namespace {
-
-// Median and minimum of the seconds of at least `repeats` calls of `work` (after one untimed
-// call), and of as many more as fit in a quarter second (up to 200): a few-millisecond run is
-// otherwise at the mercy of one interruption.
-template <class Work>
-std::pair<double, double> median_seconds(int repeats, const Work& work) {
-  work();
-  std::vector<double> seconds;
-  double total = 0.0;
-  for (int r = 0; r < repeats || (total < 0.25 && r < 200); ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    work();
-    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    total += seconds.back();
-  }
-  std::sort(seconds.begin(), seconds.end());
-  const std::size_t mid = seconds.size() / 2;
-  const double median = seconds.size() % 2 ? seconds[mid] : 0.5 * (seconds[mid - 1] + seconds[mid]);
-  return {median, seconds.front()};
-}
-
-std::string format_setting(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
 
 Run patchwork_run(const PatchSet& teapot, const TessellationOptions& base, const std::string& method,
                   const std::string& setting, const RunSettings& settings) {
@@ -68,18 +43,42 @@ Run patchwork_run(const PatchSet& teapot, const TessellationOptions& base, const
 
 }  // namespace
 
+std::pair<double, double> median_seconds(int repeats, const std::function<void()>& work) {
+  work();
+  std::vector<double> seconds;
+  double total = 0.0;
+  for (int r = 0; r < repeats || (total < 0.25 && r < 200); ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    total += seconds.back();
+  }
+  std::sort(seconds.begin(), seconds.end());
+  const std::size_t mid = seconds.size() / 2;
+  const double median = seconds.size() % 2 ? seconds[mid] : 0.5 * (seconds[mid - 1] + seconds[mid]);
+  return {median, seconds.front()};
+}
+
+std::vector<TradeoffPoint> tradeoff(const std::vector<Run>& runs, double scale, bool by_time) {
+  std::vector<TradeoffPoint> points;
+  for (const Run& run : runs) {
+    points.push_back({run.distance.hausdorff() / scale, by_time ? run.seconds : static_cast<double>(run.triangles)});
+  }
+  return points;
+}
+
 std::vector<Run> patchwork_runs(const PatchSet& teapot, std::span<const double> relative_tolerances,
                                 std::span<const int> segments, const RunSettings& settings) {
   std::vector<Run> runs;
   for (double r : relative_tolerances) {
     TessellationOptions options;
     options.relative_tolerance = r;
-    runs.push_back(patchwork_run(teapot, options, "patchwork adaptive", format_setting("r = %g", r), settings));
+    runs.push_back(patchwork_run(teapot, options, "patchwork adaptive", text("r = %g", r), settings));
   }
   for (int n : segments) {
     TessellationOptions options;
     options.segments = n;
-    runs.push_back(patchwork_run(teapot, options, "patchwork uniform", format_setting("N = %g", n), settings));
+    runs.push_back(patchwork_run(teapot, options, "patchwork uniform", text("N = %g", n), settings));
   }
   return runs;
 }
@@ -119,7 +118,7 @@ std::vector<Run> threejs_runs(const PatchSet& teapot, const std::filesystem::pat
     const int n = entry.at("segments").get<int>();
     Run run;
     run.method = "three.js";
-    run.setting = format_setting("N = %g", n);
+    run.setting = text("N = %g", n);
     run.seconds = entry.at("seconds_median").get<double>();
     run.seconds_min = entry.at("seconds_min").get<double>();
     const FaceVertexMesh mesh = read_obj(folder / ("threejs_" + std::to_string(n) + ".obj"));
@@ -130,7 +129,7 @@ std::vector<Run> threejs_runs(const PatchSet& teapot, const std::filesystem::pat
     runs.push_back(std::move(run));
   }
   why = "three " + summary.at("three_version").get<std::string>() + "; patch corners land on control points to " +
-        format_setting("%.2g", summary.at("max_corner_deviation").get<double>()) + " after mapping back";
+        text("%.2g", summary.at("max_corner_deviation").get<double>()) + " after mapping back";
   return runs;
 }
 
@@ -142,12 +141,10 @@ std::vector<Run> occt_runs(const PatchSet& teapot, std::span<const double> linea
   for (double deflection : linear_deflections) {
     Run run;
     run.method = method;
-    run.setting = format_setting("%g", deflection);
-    // A fine deflection takes tens of seconds a run: one timed run there is enough.
-    OcctRun occt = occt_tessellate(teapot.patches(), deflection, angular_deflection, 1);
-    if (occt.seconds_median < 1.0 && settings.repeats > 1) {
-      occt = occt_tessellate(teapot.patches(), deflection, angular_deflection, settings.repeats);
-    }
+    run.setting = text("%g", deflection);
+    const OcctRun occt = timed_enough(
+        [&](int repeats) { return occt_tessellate(teapot.patches(), deflection, angular_deflection, repeats); },
+        settings.repeats);
     run.seconds = occt.seconds_median;
     run.seconds_min = occt.seconds_min;
     measure_peer(teapot, occt.mesh, run, settings.meter);
@@ -158,7 +155,7 @@ std::vector<Run> occt_runs(const PatchSet& teapot, std::span<const double> linea
 #else
   static_cast<void>(teapot), static_cast<void>(linear_deflections), static_cast<void>(angular_deflection);
   static_cast<void>(method), static_cast<void>(settings);
-  why = "this build has no Open CASCADE (Debian's libocct-*-dev, installed by scripts/setup)";
+  why = kWithoutOcct;
   return {};
 #endif
 }

@@ -4,18 +4,25 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "measure/hausdorff.h"
 #include "report/peer_mesh.h"
+#include "report/tradeoff.h"
 #include "surfaces/patch_set.h"
 
 namespace patchwork::performance {
 
 inline constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+
+/// Why a build has no Open CASCADE runs.
+inline constexpr const char* kWithoutOcct =
+    "this build has no Open CASCADE (Debian's libocct-*-dev, installed by scripts/setup)";
 
 struct Run {
   /// "patchwork adaptive", "patchwork uniform", "three.js", "Open CASCADE", ...
@@ -41,6 +48,15 @@ struct RunSettings {
   int repeats = 5;
   HausdorffOptions meter;
 };
+
+/// Median and minimum seconds of at least `repeats` calls of `work` (after one untimed call),
+/// and of as many more as fit in a quarter second (up to 200): a few-millisecond run is
+/// otherwise at the mercy of one interruption.
+std::pair<double, double> median_seconds(int repeats, const std::function<void()>& work);
+
+/// The runs as (error, cost) points for report/tradeoff.h: the two-sided distance divided by
+/// `scale`, and the triangles or the seconds (one thread).
+std::vector<TradeoffPoint> tradeoff(const std::vector<Run>& runs, double scale, bool by_time);
 
 /// patchwork's tessellator at relative tolerances (adaptive) and at N x N per patch (uniform).
 std::vector<Run> patchwork_runs(const PatchSet& teapot, std::span<const double> relative_tolerances,

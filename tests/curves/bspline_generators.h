@@ -47,11 +47,13 @@ namespace bspline_gen {
 enum class Ends { clamped, unclamped, clamped_start };
 
 /// A knot vector of degree min_degree..max_degree with min_groups..max_groups interior
-/// breakpoints (none for degree 0).
-inline rc::Gen<KnotVector> knot_vector(int min_degree = 1, int max_degree = 5, int max_groups = 5, int min_groups = 0) {
+/// breakpoints (none for degree 0), clamped at both ends or (unless clamped_only) not.
+inline rc::Gen<KnotVector> knot_vector(int min_degree = 1, int max_degree = 5, int max_groups = 5, int min_groups = 0,
+                                       bool clamped_only = false) {
   return rc::gen::exec([=] {
     const int p = *rc::gen::inRange(min_degree, max_degree + 1);
-    const Ends ends = *rc::gen::element(Ends::clamped, Ends::unclamped, Ends::clamped_start);
+    const Ends ends =
+        clamped_only ? Ends::clamped : *rc::gen::element(Ends::clamped, Ends::unclamped, Ends::clamped_start);
     const int groups = p == 0 ? 0 : *rc::gen::inRange(min_groups, max_groups + 1);
     double value = *rc::gen::inRange(-16, 17) / 8.0;
     const auto next = [&value] { return value += *rc::gen::inRange(1, 9) / 8.0; };

@@ -15,27 +15,10 @@
 #include "surfaces/surface_integrals.h"
 #include "surfaces/surface_normal.h"
 #include "tests/curves/bspline_generators.h"
+#include "tests/surfaces/nurbs_generators.h"
 
 namespace patchwork {
 namespace {
-
-// A random NURBS surface: random knot vectors (clamped or not, repeated knots), coordinates in
-// [-10, 10], weights in [1/4, 4] (or all 1).
-rc::Gen<NurbsSurface> nurbs_surface(bool rational) {
-  return rc::gen::exec([rational] {
-    const KnotVector U = *bspline_gen::knot_vector(1, 3, 3);
-    const KnotVector V = *bspline_gen::knot_vector(1, 3, 3);
-    const int count = U.control_point_count() * V.control_point_count();
-    std::vector<Vec3> points;
-    std::vector<double> weights;
-    for (int k = 0; k < count; ++k) {
-      points.emplace_back(*rc::gen::inRange(-80, 81) / 8.0, *rc::gen::inRange(-80, 81) / 8.0,
-                          *rc::gen::inRange(-80, 81) / 8.0);
-      weights.push_back(rational ? *rc::gen::inRange(2, 33) / 8.0 : 1.0);
-    }
-    return NurbsSurface(U, V, points, weights);
-  });
-}
 
 // The extracted patch holding (u, v), and (u, v) in its parameters.
 struct Located {
@@ -65,7 +48,7 @@ PartialDerivatives<3> patch_partials(const AnyBezierPatch& patch, double s, doub
 
 RC_GTEST_PROP(NurbsSurface, ExtractedPatchesAreTheSurfaceWithItsDerivatives, ()) {
   const bool rational = *rc::gen::arbitrary<bool>();
-  const NurbsSurface surface = *nurbs_surface(rational);
+  const NurbsSurface surface = *nurbs_gen::nurbs_surface(rational);
   const NurbsBezierPatches pieces = bezier_patches(surface);
   RC_ASSERT(pieces.spans_u + 1 == static_cast<int>(pieces.breaks_u.size()));
   RC_ASSERT(pieces.patches.size() == static_cast<std::size_t>(pieces.spans_u * pieces.spans_v));
@@ -105,7 +88,7 @@ RC_GTEST_PROP(NurbsSurface, ExtractedPatchesAreTheSurfaceWithItsDerivatives, ())
 }
 
 RC_GTEST_PROP(NurbsSurface, KnotInsertionKeepsTheSurface, ()) {
-  const NurbsSurface surface = *nurbs_surface(true);
+  const NurbsSurface surface = *nurbs_gen::nurbs_surface(true);
   const double u = *bspline_gen::parameter(surface.knots_u());
   const double v = *bspline_gen::parameter(surface.knots_v());
   const int times = *rc::gen::inRange(1, 3);
