@@ -2,6 +2,7 @@
 // 1 bad input or a failed read or write, with one line on stderr naming the file and the problem.
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
 #include <exception>
 #include <filesystem>
@@ -161,6 +162,7 @@ int main(int argc, char** argv) {
     if (convert->parsed()) patchwork::tools::run_convert(convert_input, convert_output);
     if (subdivide->parsed()) patchwork::tools::run_subdivide(std::cout, std::cerr, sub);
     if (tessellate->parsed()) {
+      tess.show_progress = ::isatty(STDERR_FILENO) != 0;
       patchwork::tools::run_tessellate(std::cout, std::cerr, tess);
     }
   } catch (const patchwork::ParseError& error) {

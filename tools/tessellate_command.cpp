@@ -166,7 +166,12 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     }
   }
 
+  // Progress once the run has taken a second, each stage as it ends (issue: long scenes).
+  const auto report_progress = [&](const std::string& what) {
+    if (arguments.show_progress && elapsed() > 1.0) progress << "patchwork: " << what << " (" << elapsed() << " s)" << std::endl;
+  };
   const PatchSet set = read_patch_set(arguments.input);
+  report_progress(detail::message("read ", arguments.input, ": ", set.count(), " patches; tessellating"));
   const auto tessellation_start = std::chrono::steady_clock::now();
   const Tessellation result = tessellate(set, options);
   // Coarser levels of detail, each at its factor times the tolerance.
@@ -178,7 +183,8 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     coarser.push_back(tessellate(set, level));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tessellation_start).count();
-  if (elapsed() > 1.0) progress << "patchwork: tessellated in " << seconds << " s, writing " << arguments.output << "\n";
+  report_progress(detail::message("tessellated in ", seconds, " s: ", result.mesh.triangle_count(), " triangles; writing ",
+                                  arguments.output));
   // The float rounding of each level's positions as written (OBJ, OFF and PLY hold doubles exactly).
   std::vector<double> rounding(1 + coarser.size(), 0.0);
   if (gltf) {
@@ -195,6 +201,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   } else {
     write_mesh(arguments.output, welded_faces(result.mesh));
   }
+  report_progress(detail::message("wrote ", arguments.output));
   // Edges joined across gaps (PatchSet's tolerance) can push the bound past the tolerance: said
   // on stderr, since the tolerance asked for is not met.
   if (!arguments.segments && result.error_bound > result.tolerance) {

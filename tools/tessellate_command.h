@@ -51,9 +51,14 @@ struct TessellateArguments {
   bool json = false;
   /// Refuse above this many triangles (the message gives the count needed).
   std::int64_t max_triangles = 100'000'000;
+  /// Show progress (each stage that ends after the run's first second: read, tessellated,
+  /// written) on the progress stream: the CLI sets it when stderr is a terminal, so that logs
+  /// and pipes stay quiet.
+  bool show_progress = false;
 };
 
-/// Runs the command; the summary goes to `out`, progress for long runs to `progress`.
+/// Runs the command; the summary goes to `out`; warnings, and progress for long runs when
+/// `show_progress`, to `progress`.
 /// \throws InvalidInput for bad arguments, IoError/ParseError for bad files (nothing written).
 void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateArguments& arguments);
 

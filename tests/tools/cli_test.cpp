@@ -614,6 +614,28 @@ TEST(Cli, SeveralFreeformSurfacesFormOnePatchSet) {
   EXPECT_FALSE(fs::exists(folder.path() / "x.glb"));
 }
 
+// A run of more than a second shows its stages on stderr when stderr is a terminal (util-linux
+// `script` gives it one) and says nothing when it is a file. Release only: under the sanitizers
+// every run is long.
+#ifndef PATCHWORK_ENABLE_ASSERTS
+TEST(Cli, ProgressOnlyOnATerminal) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const std::string glb = quote((folder.path() / "fine.glb").string());
+  const std::string arguments = "tessellate " + teapot + " -o " + glb + " --segments 256";
+  const CliRun quiet = patchwork(folder, arguments);
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+  if (std::system("script --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no util-linux script: no terminal to test with";
+  const fs::path log = folder.path() / "terminal.txt";
+  const std::string command = "script -qec " + quote(quote(PATCHWORK_CLI) + " " + arguments + " > /dev/null") + " " +
+                              quote(log.string()) + " > /dev/null 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string shown = slurp(log);
+  EXPECT_NE(shown.find("patchwork: tessellated in"), std::string::npos) << shown;
+  EXPECT_NE(shown.find("patchwork: wrote"), std::string::npos) << shown;
+}
+#endif
+
 TEST(Cli, BadInputFailsWithOneLineAndWritesNothing) {
   const testing::TemporaryDirectory folder("patchwork_cli_test");
   const fs::path malformed = folder.path() / "bad.bpt";
