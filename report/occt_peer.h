@@ -71,7 +71,10 @@ struct SurfaceJet {
 /// the derivatives by D1 (the surface built as in the file comment).
 /// \throws InvalidInput if a degree is outside [1, 25] or a parameter is not finite or outside the
 ///         domain (OCCT would extrapolate there).
-/// \throws NumericalError if OCCT refuses the surface.
+/// \throws NumericalError if OCCT refuses the surface: among valid NurbsSurfaces, an unclamped
+///         knot vector whose end knot also stands p + 1 times (knots beyond the valid range,
+///         then a value p + 1 times at its end: OCCT takes it for an interior knot of too high a
+///         multiplicity), and knots closer than OCCT's Epsilon. The cross-check tests clamped knots.
 std::vector<SurfaceJet> occt_evaluate(const NurbsSurface& surface, std::span<const Vec2> parameters);
 
 namespace detail {

@@ -625,7 +625,9 @@ TEST(Cli, ProgressOnlyOnATerminal) {
   const CliRun quiet = patchwork(folder, arguments);
   ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
   EXPECT_EQ(quiet.err, "");
-  if (std::system("script --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no util-linux script: no terminal to test with";
+  if (std::system("script --version > /dev/null 2>&1") != 0) {
+    PATCHWORK_SKIP_UNLESS_CI("util-linux script (Debian's essential bsdutils) missing: no terminal to test with");
+  }
   const fs::path log = folder.path() / "terminal.txt";
   const std::string command = "script -qec " + quote(quote(PATCHWORK_CLI) + " " + arguments + " > /dev/null") + " " +
                               quote(log.string()) + " > /dev/null 2>&1";
