@@ -1,5 +1,6 @@
 #include "surfaces/tessellator.h"
 
+#include <chrono>
 #include <cmath>
 #include <memory>
 
@@ -26,6 +27,9 @@ void TessellatorScratchHandle::release() noexcept { scratch_.reset(); }
 // The stages in order (the header lists their files).
 // Tessellates into `result`, reusing its arrays' storage.
 void Tessellator::run(Tessellation& result) {
+  using clock = std::chrono::steady_clock;
+  const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+  const clock::time_point start = clock::now();
   plan_patches();
   build_edge_classes();
   // Raising only adds triangles: a plan over the budget is refused before its stitched
@@ -44,7 +48,12 @@ void Tessellator::run(Tessellation& result) {
     if (!plans_[p].culled) tessellate_patch(static_cast<std::uint32_t>(p));
   });
   assemble(result);
-  if (options_.measure) result.measured_error = measure(result.mesh);
+  result.measure_seconds = 0.0;
+  if (options_.measure) {
+    const clock::time_point measuring = clock::now();
+    result.measured_error = measure(result.mesh);
+    result.measure_seconds = seconds_since(measuring);
+  }
   if (options_.optimize) optimize_vertex_cache(result);
   // The vertex-fetch order also drops unused vertices (PatchOutput::unused_interior).
   if (options_.optimize || unused_interior_) optimize_vertex_fetch(result.mesh);
@@ -52,6 +61,7 @@ void Tessellator::run(Tessellation& result) {
     const auto& ids = result.mesh.position_ids;
     result.welded_vertices = ids.empty() ? 0 : 1 + *std::max_element(ids.begin(), ids.end());
   }
+  result.tessellation_seconds = seconds_since(start) - result.measure_seconds;
 }
 
 }  // namespace detail

@@ -156,6 +156,10 @@ struct Tessellation {
   double weld_gap = 0.0;
   /// Max over triangles of the sampled |S - L| (0 if not measured).
   double measured_error = 0.0;
+  /// Wall-clock seconds of the run without the measurement, and of the measurement (0 if not
+  /// measured): what a caller reports as the tessellation's and the meter's time.
+  double tessellation_seconds = 0.0;
+  double measure_seconds = 0.0;
   /// Patches not tessellated by frustum or back-face culling.
   std::size_t culled_patches = 0;
   /// Triangles those patches would have had at their tolerance.

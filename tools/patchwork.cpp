@@ -80,6 +80,8 @@ int main(int argc, char** argv) {
   tessellate->add_flag("--tangents", tess.tangents, "Write glTF TANGENT");
   tessellate->add_flag("--no-split", tess.no_split,
                        "One grid per patch (by default patches split 2 x 2 or 4 x 4 where that saves triangles)");
+  tessellate->add_flag("--no-measure", tess.no_measure,
+                       "Skip the measured error (sampled |S - L|); the guaranteed bound is computed anyway");
   tessellate
       ->add_option("--crease-angle", tess.crease_angle_degrees,
                    "Split vertices where normals differ by more than this (degrees)")

@@ -149,6 +149,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   options.uv = parse_uv(arguments.uv);
   options.tangents = arguments.tangents;
   options.split_patches = !arguments.no_split;
+  options.measure = !arguments.no_measure;
   options.crease_angle = arguments.crease_angle_degrees * std::numbers::pi / 180.0;
   options.max_triangles = arguments.max_triangles;
   if (arguments.threads < 0) throw InvalidInput(detail::message("--threads ", arguments.threads, " is negative"));
@@ -183,6 +184,9 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     coarser.push_back(tessellate(set, level));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tessellation_start).count();
+  // The meter's share of that, every level's (the rest is tessellating).
+  double measure_seconds = result.measure_seconds;
+  for (const Tessellation& level : coarser) measure_seconds += level.measure_seconds;
   report_progress(detail::message("tessellated in ", seconds, " s: ", result.mesh.triangle_count(), " triangles; writing ",
                                   arguments.output));
   // The float rounding of each level's positions as written (OBJ, OFF and PLY hold doubles exactly).
@@ -216,12 +220,15 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
                                      {"triangles", result.mesh.triangle_count()},
                                      {"vertices", result.mesh.vertex_count()},
                                      {"seconds", seconds},
+                                     {"tessellation_seconds", seconds - measure_seconds},
+                                     // Not measured (--no-measure): null, as measured_error.
+                                     {"measure_seconds", options.measure ? nlohmann::json(measure_seconds) : nlohmann::json(nullptr)},
                                      // Uniform grids have no tolerance: null.
                                      {"tolerance", arguments.segments ? nlohmann::json(nullptr) : nlohmann::json(result.tolerance)},
                                      {"error_bound", result.error_bound},
                                      {"file_error_bound", file_error_bound},
                                      {"weld_gap", result.weld_gap},
-                                     {"measured_error", result.measured_error},
+                                     {"measured_error", options.measure ? nlohmann::json(result.measured_error) : nlohmann::json(nullptr)},
                                      {"culled_patches", result.culled_patches}};
     out << document.dump(2) << "\n";
     return;
@@ -231,7 +238,9 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
       << result.culled_triangles << " triangles saved)\n";
   out << "  triangles:      " << result.mesh.triangle_count() << "\n";
   out << "  vertices:       " << result.mesh.vertex_count() << " (" << result.welded_vertices << " welded points)\n";
-  out << "  seconds:        " << seconds << "\n";
+  out << "  seconds:        " << seconds - measure_seconds << " tessellating";
+  if (options.measure) out << ", " << measure_seconds << " measuring";
+  out << "\n";
   if (arguments.segments) {
     out << "  tolerance:      none (uniform " << *arguments.segments << " x " << *arguments.segments << " per patch)\n";
   } else {
@@ -243,7 +252,11 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   out << ")\n";
   out << "  file bound:     " << file_error_bound << " (guaranteed for the file: + " << rounding[0]
       << " float rounding of its positions)\n";
-  out << "  measured error: " << result.measured_error << "\n";
+  if (options.measure) {
+    out << "  measured error: " << result.measured_error << "\n";
+  } else {
+    out << "  measured error: not measured (--no-measure)\n";
+  }
   for (std::size_t k = 0; k < coarser.size(); ++k) {
     out << "  level " << k + 1 << ":        " << coarser[k].mesh.triangle_count() << " triangles, tolerance "
         << coarser[k].tolerance << ", bound " << coarser[k].error_bound << " (file "

@@ -44,6 +44,8 @@ struct TessellateArguments {
   std::string uv = "patch";
   bool tangents = false;
   bool no_split = false;
+  /// Skip the measured error (the guaranteed bound is computed either way).
+  bool no_measure = false;
   double crease_angle_degrees = 1.0;
   /// Coarser levels of detail: level k at lod_factors[k-1] times the tolerance (increasing,
   /// each > 1); glTF output only, with a tolerance (given, or the default relative one).

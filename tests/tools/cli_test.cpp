@@ -80,9 +80,15 @@ TEST(Cli, TessellatePrintsExactlyThePromisedJsonAndWritesValidGltf) {
   const nlohmann::json summary = nlohmann::json::parse(run.out);
   std::set<std::string> keys;
   for (const auto& [key, value] : summary.items()) keys.insert(key);
-  EXPECT_EQ(keys, (std::set<std::string>{"patches", "triangles", "vertices", "seconds", "tolerance", "error_bound",
-                                         "file_error_bound", "weld_gap", "measured_error", "culled_patches"}));
+  EXPECT_EQ(keys, (std::set<std::string>{"patches", "triangles", "vertices", "seconds", "tessellation_seconds",
+                                         "measure_seconds", "tolerance", "error_bound", "file_error_bound", "weld_gap",
+                                         "measured_error", "culled_patches"}));
   EXPECT_EQ(summary["patches"], 32);
+  // The two times split the run: tessellating and measuring, both positive.
+  EXPECT_GT(summary["tessellation_seconds"].get<double>(), 0.0);
+  EXPECT_GT(summary["measure_seconds"].get<double>(), 0.0);
+  EXPECT_NEAR(summary["tessellation_seconds"].get<double>() + summary["measure_seconds"].get<double>(),
+              summary["seconds"].get<double>(), 1e-9);
   EXPECT_LE(summary["measured_error"].get<double>(), summary["error_bound"].get<double>());
   EXPECT_LE(summary["error_bound"].get<double>(), summary["tolerance"].get<double>());
   EXPECT_NEAR(summary["tolerance"].get<double>(), 8.2048659851356535e-3, 1e-12);
@@ -99,6 +105,27 @@ TEST(Cli, TessellatePrintsExactlyThePromisedJsonAndWritesValidGltf) {
     ASSERT_EQ(other.exit_code, 0) << options << ": " << other.err;
     EXPECT_TRUE(validates(gltf)) << options;
   }
+}
+
+TEST(Cli, NoMeasureSkipsTheMeterAndKeepsTheMesh) {
+  const testing::TemporaryDirectory folder("patchwork_cli_test");
+  const fs::path measured = folder.path() / "measured.obj";
+  const fs::path unmeasured = folder.path() / "unmeasured.obj";
+  const CliRun a = patchwork(folder, "tessellate " + teapot + " -o " + quote(measured.string()) + " --json");
+  const CliRun b = patchwork(folder, "tessellate " + teapot + " -o " + quote(unmeasured.string()) + " --json --no-measure");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const nlohmann::json with = nlohmann::json::parse(a.out);
+  const nlohmann::json without = nlohmann::json::parse(b.out);
+  EXPECT_GT(with["measured_error"].get<double>(), 0.0);
+  EXPECT_TRUE(without["measured_error"].is_null());
+  EXPECT_TRUE(without["measure_seconds"].is_null());
+  EXPECT_EQ(with["triangles"], without["triangles"]);
+  EXPECT_EQ(with["error_bound"], without["error_bound"]);
+  EXPECT_EQ(testing::slurp(measured), testing::slurp(unmeasured));
+  const CliRun text = patchwork(folder, "tessellate " + teapot + " -o " + quote(unmeasured.string()) + " --no-measure");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("measured error: not measured (--no-measure)"), std::string::npos) << text.out;
 }
 
 TEST(Cli, TessellateReportsTheBoundOfTheFileAsWritten) {
