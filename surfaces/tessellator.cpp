@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "core/parallel.h"
+#include "surfaces/prepared_surface.h"
 #include "surfaces/tessellator_stages.h"
 
 namespace patchwork {
@@ -66,60 +67,20 @@ void Tessellator::run(Tessellation& result) {
 
 }  // namespace detail
 
-using detail::cell_bounds;
-using detail::estimated_split;
-using detail::pieces_of;
-using detail::SplitEstimate;
-using detail::Tessellator;
-using detail::tight_or_control_diagonal;
-
 Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& options) {
-  Tessellation result;
-  Tessellator(pieces, options).run(result);
-  result.scratch.release();
-  return result;
+  return detail::fresh_tessellation([&](Tessellation& result) { detail::Tessellator(pieces, options).run(result); });
 }
 
 Tessellation tessellate(const PatchSet& set, const TessellationOptions& options) {
-  Tessellation result;
-  tessellate(set, options, result);
-  result.scratch.release();
-  return result;
+  return detail::fresh_tessellation([&](Tessellation& result) { tessellate(set, options, result); });
 }
 
 void tessellate(const PatchSet& set, const TessellationOptions& options, Tessellation& result) {
-  const bool relative = options.relative_tolerance.has_value();
-  const std::vector<std::vector<SecondDerivativeBounds>> cells = cell_bounds(set);
-  // The solids cost a volume integral per patch: only automatic back-face culling needs them.
-  const bool with_solids = options.camera && options.back_face_culling == BackFaceCulling::automatic;
-  const SurfacePieces whole = pieces_of(set, cells, 1, tight_or_control_diagonal(set, relative), with_solids);
-  // Splitting: only with a valid tolerance and no other mode (plan_patches reports the rest).
-  const int modes =
-      options.tolerance.has_value() + relative + options.segments.has_value() + options.camera.has_value();
-  const double eps = options.tolerance ? *options.tolerance
-                     : relative        ? *options.relative_tolerance * whole.diagonal
-                                       : 0.0;
-  int best_k = 1;
-  SplitEstimate best;
-  // Split pieces do not join T-junctions: such sets are tessellated whole.
-  if (options.split_patches && modes == 1 && std::isfinite(eps) && eps > 0.0 && set.t_junctions().empty()) {
-    try {
-      best = estimated_split(cells, 1, eps);
-      for (int k : {2, 4}) {
-        SplitEstimate candidate = estimated_split(cells, k, eps);
-        if (candidate.cells < best.cells) best = std::move(candidate), best_k = k;
-      }
-    } catch (const InvalidInput&) {
-      // A tolerance too fine for any grid: the whole patches give the error message.
-      best_k = 1;
-      best.grids.clear();
-    }
-  }
-  // The grids found for the choice are the plan's (the same bounds at the same tolerance).
-  const std::vector<GridSize>* planned = best.grids.empty() ? nullptr : &best.grids;
-  if (best_k == 1) return Tessellator(whole, options, planned).run(result);
-  const SurfacePieces split = pieces_of(set, cells, best_k, whole.diagonal);
-  Tessellator(split, options, planned).run(result);
+  const auto start = std::chrono::steady_clock::now();
+  const PreparedSurface prepared(set);
+  tessellate(prepared, options, result);
+  result.tessellation_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result.measure_seconds;
 }
 
 }  // namespace patchwork

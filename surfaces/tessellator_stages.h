@@ -9,7 +9,9 @@
 //                                 straight into the mesh;
 //   tessellator_measure.cpp       the measured error;
 //   tessellator_vertex_order.cpp  vertex-cache and vertex-fetch order;
-//   surface_pieces.cpp            patch sets as pieces (whole or split), and the split chosen;
+//   surface_pieces.cpp            patch sets as pieces (whole or split), and the split estimates;
+//   prepared_surface.cpp          what a patch set's tessellations share (bounds, pieces), made
+//                                 once; the split chosen per tessellation;
 //   tessellator.cpp               run() in that order, and the public tessellate().
 // Internal: nothing here is installed or part of the API.
 
@@ -419,6 +421,15 @@ class Tessellator {
   std::int64_t culled_triangles_ = 0;
 };
 
+// The by-value forms of tessellate: `run` into a fresh result, whose scratch is then freed.
+template <class Run>
+Tessellation fresh_tessellation(const Run& run) {
+  Tessellation result;
+  run(result);
+  result.scratch.release();
+  return result;
+}
+
 // --- surface_pieces.cpp: patch sets as pieces -------------------------------------------------
 
 /// The 4 x 4 sub-net bounds of every patch (what the rates of whole and split patches rest on).
@@ -427,6 +438,9 @@ std::vector<std::vector<SecondDerivativeBounds>> cell_bounds(const PatchSet& set
 
 /// The diagonal of the surface's tight box (tight_diagonal) or of the control points' box.
 double tight_or_control_diagonal(const PatchSet& set, bool tight_diagonal);
+
+/// Per patch, the solid it bounds, or -1 (SurfacePieces::solids).
+std::vector<std::int32_t> solids_of(const PatchSet& set);
 
 /// The pieces of `set`, each patch split k x k (k = 1: the patches themselves, with the set's
 /// T-junctions and, with_solids, its solids for back-face culling).

@@ -7,6 +7,20 @@
 
 namespace patchwork::testing {
 
+/// Options for a tolerance relative to the surface's box diagonal.
+inline TessellationOptions relative(double r) {
+  TessellationOptions options;
+  options.relative_tolerance = r;
+  return options;
+}
+
+/// Options for an absolute tolerance.
+inline TessellationOptions absolute(double e) {
+  TessellationOptions options;
+  options.tolerance = e;
+  return options;
+}
+
 /// Everything a Tessellation holds is the same, bit for bit (the scratch is no part of it).
 inline void expect_identical_tessellations(const Tessellation& a, const Tessellation& b) {
   EXPECT_EQ(a.mesh.indices, b.mesh.indices);

@@ -25,11 +25,7 @@ const PatchSet& teapot() {
   return set;
 }
 
-TessellationOptions relative(double r) {
-  TessellationOptions options;
-  options.relative_tolerance = r;
-  return options;
-}
+using testing::relative;
 
 // N x N per patch, in the tessellator's order (no vertex-cache reordering).
 TessellationOptions uniform_unordered(int segments) {
