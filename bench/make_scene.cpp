@@ -20,8 +20,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "make_scene: COPIES '%s' is not a positive whole number\n", argv[2]);
       return 2;
     }
-    patchwork::write_bpt(argv[3],
-                         patchwork::bench::rotated_copies(patchwork::read_bpt(argv[1]), static_cast<std::size_t>(copies)));
+    patchwork::write_bpt(
+        argv[3], patchwork::bench::rotated_copies(patchwork::read_bpt(argv[1]), static_cast<std::size_t>(copies)));
   } catch (const std::exception& error) {
     std::fprintf(stderr, "make_scene: %s\n", error.what());
     return 1;

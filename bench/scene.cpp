@@ -1,9 +1,8 @@
 #include "bench/scene.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
-
-#include <Eigen/Geometry>
 
 namespace patchwork::bench {
 

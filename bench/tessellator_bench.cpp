@@ -14,6 +14,7 @@
 #include "io/bpt.h"
 #include "io/gltf.h"
 #include "surfaces/patch_flatness.h"
+#include "surfaces/prepared_surface.h"
 #include "surfaces/tessellator.h"
 
 namespace {
@@ -41,6 +42,45 @@ void teapot_end_to_end(benchmark::State& state) {
   state.counters["triangles"] = static_cast<double>(triangles);
 }
 BENCHMARK(teapot_end_to_end)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The per-frame call: the teapot at a relative tolerance of range(0) * 1e-4, one thread, no
+// measuring, into one Tessellation reused from frame to frame. range(1): 0 the plain call on the
+// set (prepares every time); 1 a PreparedSurface made once, the same tolerance every frame (the
+// last frame's plan reused); 2 the prepared surface with the tolerance alternating between
+// range(0) * 1e-4 and 1.01 times that (every frame plans afresh, as with a moving camera).
+void teapot_per_frame(benchmark::State& state) {
+  const double tolerance = static_cast<double>(state.range(0)) * 1e-4;
+  const int mode = static_cast<int>(state.range(1));
+  TessellationOptions options;
+  options.relative_tolerance = tolerance;
+  options.threads = 1;
+  options.measure = false;
+  const PreparedSurface prepared(teapot());
+  Tessellation result;
+  std::size_t triangles = 0;
+  bool odd = false;
+  for (auto _ : state) {
+    if (mode == 0) {
+      tessellate(teapot(), options, result);
+    } else {
+      if (mode == 2) options.relative_tolerance = odd ? 1.01 * tolerance : tolerance;
+      odd = !odd;
+      tessellate(prepared, options, result);
+    }
+    triangles = result.mesh.triangle_count();
+    benchmark::DoNotOptimize(result.mesh.positions.data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+BENCHMARK(teapot_per_frame)
+    ->ArgNames({"tol_1e-4", "mode"})
+    ->Args({10, 0})
+    ->Args({10, 1})
+    ->Args({10, 2})
+    ->Args({100, 0})
+    ->Args({100, 1})
+    ->Args({100, 2})
+    ->Unit(benchmark::kMicrosecond);
 
 // Uniform N x N grids (N = range(0)) on range(1) threads, into one Tessellation whose arrays are
 // reused from run to run (range(2) = 1: the steady state of a caller that tessellates again and

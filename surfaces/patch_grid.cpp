@@ -256,9 +256,17 @@ void evaluate_grid_column(const BezierPatch3& patch, const PatchGridWeights& wei
 }  // namespace
 
 PatchGridWeights::PatchGridWeights(int n, int m, std::span<const double> us, std::span<const double> vs)
-    : n_(n), m_(m), us_(us.begin(), us.end()), vs_(vs.begin(), vs.end()) {
+    : n_(n), m_(m) {
+  assign(n, m, us, vs);
+}
+
+void PatchGridWeights::assign(int n, int m, std::span<const double> us, std::span<const double> vs) {
   if (n < 0 || m < 0) throw InvalidInput(detail::message("PatchGridWeights: degrees (", n, ", ", m, ") are negative"));
-  if (us_.empty() || vs_.empty()) throw InvalidInput("PatchGridWeights: empty parameter list");
+  if (us.empty() || vs.empty()) throw InvalidInput("PatchGridWeights: empty parameter list");
+  n_ = n;
+  m_ = m;
+  us_.assign(us.begin(), us.end());
+  vs_.assign(vs.begin(), vs.end());
   tabulate(n, us_, u_values_, u_derivatives_);
   tabulate(m, vs_, v_values_, v_derivatives_);
 }
@@ -300,7 +308,8 @@ void check_grid_output(int n, int m, const PatchGridWeights& weights, const Grid
                                ") for a patch of degrees (", n, ", ", m, ")"));
   }
   const std::size_t count = weights.us().size() * weights.vs().size();
-  if (out.points.size() < count || out.normals.size() < count || (!out.tangents.empty() && out.tangents.size() < count)) {
+  if (out.points.size() < count || out.normals.size() < count ||
+      (!out.tangents.empty() && out.tangents.size() < count)) {
     throw InvalidInput(message("evaluate_grid: room for ", std::min(out.points.size(), out.normals.size()),
                                " samples, the grid has ", count));
   }

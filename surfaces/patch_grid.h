@@ -22,6 +22,10 @@ class PatchGridWeights {
  public:
   /// \throws InvalidInput if a degree is negative, a list is empty, or a parameter not finite.
   PatchGridWeights(int n, int m, std::span<const double> us, std::span<const double> vs);
+  /// Re-tabulates for degrees (n, m) at us x vs, keeping the storage (a caller evaluating many
+  /// small grids, such as the tessellator's patch sides, allocates once).
+  /// \throws InvalidInput as the constructor.
+  void assign(int n, int m, std::span<const double> us, std::span<const double> vs);
   /// A uniform grid of (segments_u + 1) x (segments_v + 1) parameters on [0,1]^2.
   static PatchGridWeights uniform(int n, int m, std::size_t segments_u, std::size_t segments_v);
 

@@ -50,7 +50,8 @@ double PreparedSurface::tight_diagonal() const {
 double PreparedSurface::control_diagonal() const noexcept { return parts_->control_diagonal; }
 
 const SurfacePieces& PreparedSurface::pieces(int k, bool tight_diagonal, bool with_solids) const {
-  if (k != 1 && k != 2 && k != 4) throw InvalidInput(detail::message("PreparedSurface::pieces: k = ", k, " is not 1, 2 or 4"));
+  if (k != 1 && k != 2 && k != 4)
+    throw InvalidInput(detail::message("PreparedSurface::pieces: k = ", k, " is not 1, 2 or 4"));
   if (k > 1 && !set_->t_junctions().empty()) {
     throw InvalidInput(detail::message("PreparedSurface::pieces: the set has ", set_->t_junctions().size(),
                                        " T-junctions, which split pieces do not join"));
@@ -58,8 +59,7 @@ const SurfacePieces& PreparedSurface::pieces(int k, bool tight_diagonal, bool wi
   const std::size_t slot = static_cast<std::size_t>(k == 1 ? 0 : k == 2 ? 1 : 2) * 2 + (tight_diagonal ? 1 : 0);
   const double diagonal = tight_diagonal ? this->tight_diagonal() : control_diagonal();
   std::call_once(parts_->pieces_once[slot], [&] {
-    parts_->pieces[slot] =
-        std::make_unique<SurfacePieces>(detail::pieces_of(*set_, parts_->cells, k, diagonal, false));
+    parts_->pieces[slot] = std::make_unique<SurfacePieces>(detail::pieces_of(*set_, parts_->cells, k, diagonal, false));
   });
   SurfacePieces& made = *parts_->pieces[slot];
   if (k == 1 && with_solids) {
@@ -91,9 +91,9 @@ void tessellate(const PreparedSurface& prepared, const TessellationOptions& opti
   // Split pieces do not join T-junctions: such sets are tessellated whole.
   if (options.split_patches && modes == 1 && std::isfinite(eps) && eps > 0.0 && prepared.set().t_junctions().empty()) {
     try {
-      best = detail::estimated_split(cells, 1, eps);
+      best = detail::estimated_split(cells, 1, eps, options.threads);
       for (int k : {2, 4}) {
-        SplitEstimate candidate = detail::estimated_split(cells, k, eps);
+        SplitEstimate candidate = detail::estimated_split(cells, k, eps, options.threads);
         if (candidate.cells < best.cells) best = std::move(candidate), best_k = k;
       }
     } catch (const InvalidInput&) {

@@ -2,10 +2,12 @@
 // T-junctions, weld gaps and solids, or each patch split k x k (surfaces/tessellator.h).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "surfaces/patch_bounding_box.h"
 #include "surfaces/patch_grid.h"
 #include "surfaces/rational_bounds.h"
@@ -110,14 +112,19 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
   SurfacePieces pieces;
   pieces.diagonal = diagonal;
   // Piece p of patch `patch` on the grid us x vs (in the patch's parameters), of its kind.
+  // The weights of each thread's last grid keep their storage: the tessellator evaluates every
+  // piece's sides as small grids, and fresh tables cost more than the evaluation.
   const auto grid_of = [&set](std::uint32_t patch, std::span<const double> us, std::span<const double> vs,
                               GridSamplesView out) {
+    thread_local PatchGridWeights weights(0, 0, std::array<double, 1>{0.0}, std::array<double, 1>{0.0});
     if (const RationalBezierPatch* rational = set.rational(patch)) {
-      evaluate_grid(*rational, PatchGridWeights(rational->degree_u(), rational->degree_v(), us, vs), out);
+      weights.assign(rational->degree_u(), rational->degree_v(), us, vs);
+      evaluate_grid(*rational, weights, out);
       return;
     }
     const BezierPatch3& net = set.control_nets()[patch];
-    evaluate_grid(net, PatchGridWeights(net.degree_u(), net.degree_v(), us, vs), out);
+    weights.assign(net.degree_u(), net.degree_v(), us, vs);
+    evaluate_grid(net, weights, out);
   };
   const auto point_of = [&set](std::uint32_t patch, double u, double v) {
     const RationalBezierPatch* rational = set.rational(patch);
@@ -190,10 +197,12 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
   pieces.evaluate_grid = [grid_of, domains](std::uint32_t q, std::span<const double> us, std::span<const double> vs,
                                             GridSamplesView out) {
     const SurfacePieces::Domain& d = domains[q];
-    std::vector<double> patch_us(us.begin(), us.end());
-    std::vector<double> patch_vs(vs.begin(), vs.end());
-    for (double& u : patch_us) u = d.u0 + d.size * u;
-    for (double& v : patch_vs) v = d.v0 + d.size * v;
+    thread_local std::vector<double> patch_us;
+    thread_local std::vector<double> patch_vs;
+    patch_us.resize(us.size());
+    patch_vs.resize(vs.size());
+    for (std::size_t k = 0; k < us.size(); ++k) patch_us[k] = d.u0 + d.size * us[k];
+    for (std::size_t k = 0; k < vs.size(); ++k) patch_vs[k] = d.v0 + d.size * vs[k];
     grid_of(d.patch, patch_us, patch_vs, out);
   };
   pieces.evaluate = [point_of, domains](std::uint32_t q, double u, double v) {
@@ -203,17 +212,21 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
   return pieces;
 }
 
-SplitEstimate estimated_split(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps) {
+SplitEstimate estimated_split(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps,
+                              int threads) {
   SplitEstimate estimate;
-  for (const auto& patch_cells : cells) {
+  const auto kk = static_cast<std::size_t>(k * k);
+  estimate.grids.resize(cells.size() * kk);
+  // Each patch fills its own k x k slots: the same grids on any number of threads.
+  parallel_for(cells.size(), threads, [&](std::size_t p) {
     for (int b = 0; b < k; ++b) {
       for (int a = 0; a < k; ++a) {
-        const SecondDerivativeBounds M = split_bounds(patch_cells, k, a, b);
-        estimate.grids.push_back(grid_for_tolerance(M, eps, least_segments(M)));
-        estimate.cells += estimate.grids.back().segments_u * estimate.grids.back().segments_v;
+        const SecondDerivativeBounds M = split_bounds(cells[p], k, a, b);
+        estimate.grids[p * kk + static_cast<std::size_t>(a + k * b)] = grid_for_tolerance(M, eps, least_segments(M));
       }
     }
-  }
+  });
+  for (const GridSize& grid : estimate.grids) estimate.cells += grid.segments_u * grid.segments_v;
   return estimate;
 }
 

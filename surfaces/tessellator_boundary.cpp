@@ -2,12 +2,11 @@
 // through shared and collapsed edges and T-junctions, edge classes, interiors), then each
 // piece's boundary pattern with its welded ids, positions, normals and tangents.
 
-#include "surfaces/tessellator_stages.h"
-
 #include <algorithm>
 
 #include "core/assert.h"
 #include "core/union_find.h"
+#include "surfaces/tessellator_stages.h"
 
 namespace patchwork::detail {
 
@@ -43,8 +42,12 @@ void Tessellator::number_welded_points() {
       const int kp = static_cast<int>(part.edge);
       const int from = composite.reversed[b] ? edge_end[kp] : edge_start[kp];
       const int to = composite.reversed[b] ? edge_start[kp] : edge_end[kp];
-      corners.unite(slot(part.patch, from), b == 0 ? slot(e.patch, edge_start[k]) : patch_slots + composite.first_junction + static_cast<std::uint32_t>(b - 1));
-      corners.unite(slot(part.patch, to), b == last ? slot(e.patch, edge_end[k]) : patch_slots + composite.first_junction + static_cast<std::uint32_t>(b));
+      corners.unite(slot(part.patch, from),
+                    b == 0 ? slot(e.patch, edge_start[k])
+                           : patch_slots + composite.first_junction + static_cast<std::uint32_t>(b - 1));
+      corners.unite(slot(part.patch, to), b == last
+                                              ? slot(e.patch, edge_end[k])
+                                              : patch_slots + composite.first_junction + static_cast<std::uint32_t>(b));
     }
   }
   corner_ids_.assign(patch_slots + junctions_, no_id);
@@ -161,9 +164,9 @@ void Tessellator::tessellate_patch(std::uint32_t p) {
   // The bound covers the whole pattern, dropped triangles included (their parameter triangles
   // map onto a mesh edge, which must be as close to the surface).
   PatchPlan& plan = plans_[p];
-  out.bound = pattern.grid                        ? plan.cell_bound(out.inner.u, out.inner.v)
-              : plan.checked_rates == r           ? plan.checked_bound
-                                                  : pattern_bound_of(p, r);
+  out.bound = pattern.grid              ? plan.cell_bound(out.inner.u, out.inner.v)
+              : plan.checked_rates == r ? plan.checked_bound
+                                        : pattern_bound_of(p, r);
 }
 
 // Positions, normals (and tangents) of the boundary points, each side (with its corners) as a
@@ -173,21 +176,25 @@ void Tessellator::evaluate_sides(std::uint32_t p, const PatternRates& r, PatchOu
   out.positions.resize(count);
   out.normals.resize(count);
   if (options_.tangents) out.tangents.resize(count);
-  std::vector<Vec3> points;
-  std::vector<Vec3> normals;
-  std::vector<Vec4> tangents;
+  // Each thread's buffers keep their storage from side to side.
+  thread_local std::vector<Vec3> points;
+  thread_local std::vector<Vec3> normals;
+  thread_local std::vector<Vec4> tangents;
+  thread_local std::vector<double> ts;
+  tangents.clear();
   // Sides v0 and v1 with their corners; sides u1 and u0 without.
   for (int k = 0; k < 4; ++k) {
     const int e = r.edges[k];
     const bool along_u = k % 2 == 0;
     // The pattern's parameters: even steps, or even within each piece of a composite edge.
-    std::vector<double> ts;
-    for (int step = along_u ? 0 : 1; step <= (along_u ? e : e - 1); ++step) ts.push_back(edge_step_parameter(r, k, step));
+    ts.clear();
+    for (int step = along_u ? 0 : 1; step <= (along_u ? e : e - 1); ++step)
+      ts.push_back(edge_step_parameter(r, k, step));
     if (ts.empty()) continue;
     points.resize(ts.size());
     normals.resize(ts.size());
     if (options_.tangents) tangents.resize(ts.size());
-    const std::vector<double> fixed = {k == 1 || k == 2 ? 1.0 : 0.0};
+    const std::array<double, 1> fixed = {k == 1 || k == 2 ? 1.0 : 0.0};
     const GridSamplesView samples{points, normals, tangents};
     if (along_u) {
       pieces_.evaluate_grid(p, ts, fixed, samples);

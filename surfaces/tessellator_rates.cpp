@@ -2,17 +2,18 @@
 // camera, and the culling), one rate per edge class, composite edges at T-junctions, and the
 // rates raised until every stitched pattern meets its tolerance (surfaces/tessellator.h).
 
-#include "surfaces/tessellator_stages.h"
-
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
 #include "core/assert.h"
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "surfaces/patch_flatness.h"
+#include "surfaces/tessellator_stages.h"
 
 namespace patchwork::detail {
 
@@ -73,15 +74,19 @@ void Tessellator::plan_patches() {
     check_positive(options_.pixel_tolerance, "pixel tolerance");
   }
   double focal = options_.camera ? focal_length_pixels(*options_.camera) : 0.0;
-  const std::vector<bool> back_faces_hidden = options_.camera ? hidden_back_faces(*options_.camera) : std::vector<bool>();
+  const std::vector<bool> back_faces_hidden =
+      options_.camera ? hidden_back_faces(*options_.camera) : std::vector<bool>();
   // Patches reaching behind the near limit get the tolerance of this depth.
   const double near_depth = 1e-3 * pieces_.diagonal;
-  for (std::size_t p = 0; p < count_; ++p) {
+  // Each piece's plan on its own (in parallel: each writes only its own plan). A piece that
+  // cannot be planned is reported after the loop, the lowest such piece, so the message does not
+  // depend on the threads.
+  const auto plan_piece = [&](std::size_t p) {
     PatchPlan& plan = plans_[p];
     plan.bounds = pieces_.bounds[p];
     if (options_.segments) {
       plan.nu = plan.nv = *options_.segments;
-      continue;
+      return;
     }
     plan.tolerance = tolerance;
     if (options_.camera) {
@@ -89,7 +94,8 @@ void Tessellator::plan_patches() {
       const BezierPatch3& patch = (*pieces_.patches)[p];
       plan.tolerance = options_.pixel_tolerance * std::max(nearest_depth(patch, camera), near_depth) / focal;
       const bool rational = !pieces_.rational.empty() && pieces_.rational[p];
-      plan.culled = outside_frustum(patch, camera) || (back_faces_hidden[p] && !rational && back_facing(patch, camera.eye));
+      plan.culled =
+          outside_frustum(patch, camera) || (back_faces_hidden[p] && !rational && back_facing(patch, camera.eye));
     }
     // The weld gap of the piece's edges comes on top of its pattern's bound (assemble): plan
     // for the rest, down to half the tolerance (a gap beyond that shows in error_bound).
@@ -108,10 +114,22 @@ void Tessellator::plan_patches() {
     }
     plan.nu = static_cast<int>(grid.segments_u);
     plan.nv = static_cast<int>(grid.segments_v);
-    if (plan.culled) {
-      ++culled_;
-      culled_triangles_ += 2 * grid.segments_u * grid.segments_v;
+  };
+  std::atomic<std::size_t> first_failure{count_};
+  parallel_for(count_, options_.threads, [&](std::size_t p) {
+    try {
+      plan_piece(p);
+    } catch (const InvalidInput&) {
+      std::size_t seen = first_failure.load();
+      while (p < seen && !first_failure.compare_exchange_weak(seen, p)) {
+      }
     }
+  });
+  if (first_failure.load() < count_) plan_piece(first_failure.load());  // throws again, alone
+  for (std::size_t p = 0; p < count_; ++p) {
+    if (!plans_[p].culled) continue;
+    ++culled_;
+    culled_triangles_ += 2 * static_cast<std::int64_t>(plans_[p].nu) * plans_[p].nv;
   }
 }
 
@@ -219,7 +237,8 @@ void Tessellator::update_edge_rates() {
     }
   }
   for (CompositeEdge& composite : composites_) {
-    for (std::size_t b = 0; b < composite.classes.size(); ++b) composite.segments.rates[b] = classes_[composite.classes[b]].rate;
+    for (std::size_t b = 0; b < composite.classes.size(); ++b)
+      composite.segments.rates[b] = classes_[composite.classes[b]].rate;
   }
 }
 
@@ -241,17 +260,21 @@ PatternRates Tessellator::rates(std::uint32_t p) const {
 // Stitched triangles can reach further than grid cells; raise the inner rates of any patch
 // whose worst triangle exceeds its tolerance until none does (rates only grow, so this ends).
 void Tessellator::raise_rates_to_bounds() {
+  // Within a round each piece reads the edge rates (changed only between rounds) and writes
+  // its own plan: the pieces run in parallel.
+  std::vector<std::uint8_t> raised_piece(count_);
   for (int round = 0; round < 64; ++round) {
-    bool raised = false;
-    for (std::uint32_t p = 0; p < count_; ++p) {
+    std::fill(raised_piece.begin(), raised_piece.end(), std::uint8_t{0});
+    parallel_for(count_, options_.threads, [&](std::size_t piece) {
+      const auto p = static_cast<std::uint32_t>(piece);
       PatchPlan& plan = plans_[p];
-      if (plan.culled) continue;
+      if (plan.culled) return;
       const InnerGrid inner = inner_grid(rates(p));
       const int nu = inner.u;
       const int nv = inner.v;
       // A plain grid meets the tolerance by construction (its rates only grew); only
       // stitched patterns need their triangles checked.
-      if (inner.grid || stitched_bound(p) <= plan.tolerance) continue;
+      if (inner.grid || stitched_bound(p) <= plan.tolerance) return;
       // Raise one direction: the one whose pattern then meets the tolerance with fewer cells,
       // else the one whose bound falls further.
       struct Candidate {
@@ -289,9 +312,9 @@ void Tessellator::raise_rates_to_bounds() {
                                                  : a.bound <= b.bound;
       plan.nu = take_u ? a.nu : b.nu;
       plan.nv = take_u ? a.nv : b.nv;
-      raised = true;
-    }
-    if (!raised) return;
+      raised_piece[p] = 1;
+    });
+    if (std::find(raised_piece.begin(), raised_piece.end(), std::uint8_t{1}) == raised_piece.end()) return;
     update_edge_rates();
   }
   throw NumericalError("tessellate: the stitched rates did not settle within 64 rounds");

@@ -454,8 +454,9 @@ struct SplitEstimate {
   std::int64_t cells = 0;
 };
 
-/// The split estimate of `cells` at k x k and tolerance eps. \throws InvalidInput as
-/// grid_for_tolerance does.
-SplitEstimate estimated_split(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps);
+/// The split estimate of `cells` at k x k and tolerance eps, on `threads` threads (0: all
+/// cores; the result does not depend on it). \throws InvalidInput as grid_for_tolerance does.
+SplitEstimate estimated_split(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps,
+                              int threads);
 
 }  // namespace patchwork::detail

@@ -50,16 +50,16 @@ TessellationOptions looking(const PatchSet& set, const Vec3& offset, BackFaceCul
 // a camera that moves a little (some patches keep their tolerance, some change, some are
 // culled), other attributes, uniform grids, and back.
 std::vector<Named> frames(const PatchSet& set) {
-  std::vector<Named> list = {{"relative 1e-2", relative(1e-2)},
-                             {"relative 1e-3", relative(1e-3)},
-                             {"relative 1e-3 again", relative(1e-3)},
-                             {"absolute 0.004", absolute(0.004)},
-                             {"camera far", looking(set, Vec3(0.98, -0.73, 0.6), BackFaceCulling::automatic)},
-                             {"camera nearer", looking(set, Vec3(0.73, -0.55, 0.49), BackFaceCulling::automatic)},
-                             {"camera nearer again", looking(set, Vec3(0.73, -0.55, 0.49), BackFaceCulling::automatic)},
-                             {"camera inside the box, culling never",
-                              looking(set, Vec3(0.05, 0.02, -0.06), BackFaceCulling::never)},
-                             {"camera always culls", looking(set, Vec3(0.73, -0.55, 0.49), BackFaceCulling::always)}};
+  std::vector<Named> list = {
+      {"relative 1e-2", relative(1e-2)},
+      {"relative 1e-3", relative(1e-3)},
+      {"relative 1e-3 again", relative(1e-3)},
+      {"absolute 0.004", absolute(0.004)},
+      {"camera far", looking(set, Vec3(0.98, -0.73, 0.6), BackFaceCulling::automatic)},
+      {"camera nearer", looking(set, Vec3(0.73, -0.55, 0.49), BackFaceCulling::automatic)},
+      {"camera nearer again", looking(set, Vec3(0.73, -0.55, 0.49), BackFaceCulling::automatic)},
+      {"camera inside the box, culling never", looking(set, Vec3(0.05, 0.02, -0.06), BackFaceCulling::never)},
+      {"camera always culls", looking(set, Vec3(0.73, -0.55, 0.49), BackFaceCulling::always)}};
   TessellationOptions tangents = relative(1e-3);
   tangents.tangents = true;
   tangents.uv = UvMode::atlas;
