@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <ostream>
@@ -28,6 +29,9 @@ using detail::max_distance;
 using detail::walks_forward;
 
 // Points hashed into cubic cells; queries return the ids within the 27 neighbouring cells.
+// A cell is keyed by its three whole coordinates, not folded into fewer bits: folded keys alias
+// cells a fixed distance apart, which in a scene many times the cell size (a tolerance of 10^-9
+// of the set) puts far-apart points into one bucket, and the cost grows faster than the scene.
 class PointGrid {
  public:
   explicit PointGrid(double cell) : cell_(cell > 0.0 ? cell : 1.0) {}
@@ -46,17 +50,25 @@ class PointGrid {
   }
 
  private:
-  std::uint64_t key(const Vec3& p, int dx, int dy, int dz) const {
+  using Cell = std::array<std::int64_t, 3>;
+  struct CellHash {
+    std::size_t operator()(const Cell& c) const noexcept {
+      std::uint64_t h = static_cast<std::uint64_t>(c[0]) * 0x9E3779B97F4A7C15ull;
+      h = (h ^ (h >> 31) ^ static_cast<std::uint64_t>(c[1])) * 0xC2B2AE3D27D4EB4Full;
+      h = (h ^ (h >> 29) ^ static_cast<std::uint64_t>(c[2])) * 0x165667B19E3779F9ull;
+      return static_cast<std::size_t>(h ^ (h >> 32));
+    }
+  };
+  Cell key(const Vec3& p, int dx, int dy, int dz) const {
     // The cell index is clamped before the conversion (a quotient beyond 2^63 would be undefined
-    // behaviour, found by fuzzing with a zero-size set): far-away cells only share a key.
+    // behaviour, found by fuzzing with a zero-size set): cells beyond 2^52 share a key.
     const auto c = [this](double x, int d) {
-      const double q = std::clamp(std::floor(x / cell_), -0x1p52, 0x1p52);
-      return static_cast<std::uint64_t>(static_cast<std::int64_t>(q) + d) & 0x1fffff;
+      return static_cast<std::int64_t>(std::clamp(std::floor(x / cell_), -0x1p52, 0x1p52)) + d;
     };
-    return c(p.x(), dx) | (c(p.y(), dy) << 21) | (c(p.z(), dz) << 42);
+    return {c(p.x(), dx), c(p.y(), dy), c(p.z(), dz)};
   }
   double cell_;
-  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+  std::unordered_map<Cell, std::vector<std::size_t>, CellHash> cells_;
 };
 
 // Both point lists at one degree (the lower elevated), b read backwards when reversed; the
