@@ -8,11 +8,14 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
+#include "bench/scene.h"
 #include "io/bpt.h"
 #include "io/gltf.h"
+#include "surfaces/patch_bounding_box.h"
 #include "surfaces/patch_flatness.h"
 #include "surfaces/prepared_surface.h"
 #include "surfaces/tessellator.h"
@@ -81,6 +84,43 @@ BENCHMARK(teapot_per_frame)
     ->Args({100, 1})
     ->Args({100, 2})
     ->Unit(benchmark::kMicrosecond);
+
+// The per-frame view-dependent re-tessellation of a scene of range(0) rotated teapots
+// (bench/scene.h) from a camera circling over it, prepared once, 2 threads, half a pixel on a
+// 1920 x 1080 screen, frustum and back-face culling (automatic: the teapot is open, so only
+// the frustum culls), into one Tessellation reused from frame to frame. Every frame moves the
+// camera by 1 degree, so every frame plans afresh.
+void scene_camera_frames(benchmark::State& state) {
+  const auto copies = static_cast<std::size_t>(state.range(0));
+  static std::vector<BezierPatch3> patches;
+  static std::size_t made = 0;
+  if (made != copies) patches = bench::rotated_copies(teapot().patches(), copies), made = copies;
+  const PatchSet set(patches);
+  const PreparedSurface prepared(set);
+  const Eigen::AlignedBox3d box = bounding_box(set, 1e-6 * set.size());
+  const Vec3 centre = box.center();
+  const double radius = 0.35 * box.diagonal().norm();
+  TessellationOptions options;
+  options.threads = 2;
+  options.measure = false;
+  options.pixel_tolerance = 0.5;
+  Tessellation result;
+  int frame = 0;
+  std::int64_t triangles = 0;
+  std::int64_t culled = 0;
+  for (auto _ : state) {
+    const double angle = frame++ * 3.14159265358979323846 / 180.0;
+    const Vec3 eye = centre + Vec3(radius * std::cos(angle), radius * std::sin(angle), 0.25 * radius);
+    options.camera = Camera{eye, centre, Vec3::UnitZ(), 60.0, 1920, 1080};
+    tessellate(prepared, options, result);
+    triangles += static_cast<std::int64_t>(result.mesh.triangle_count());
+    culled += static_cast<std::int64_t>(result.culled_patches);
+  }
+  state.counters["patches"] = static_cast<double>(set.count());
+  state.counters["triangles_per_frame"] = static_cast<double>(triangles) / static_cast<double>(frame);
+  state.counters["culled_per_frame"] = static_cast<double>(culled) / static_cast<double>(frame);
+}
+BENCHMARK(scene_camera_frames)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(20);
 
 // Uniform N x N grids (N = range(0)) on range(1) threads, into one Tessellation whose arrays are
 // reused from run to run (range(2) = 1: the steady state of a caller that tessellates again and

@@ -30,10 +30,12 @@
 #include "core/errors.h"
 #include "io/atomic_file.h"
 #include "io/bpt.h"
+#include "report/benchmark_json.h"
 #include "report/format.h"
 #include "report/hard_cases.h"
 #include "report/nurbs_section.h"
 #include "report/report_section.h"
+#include "report/scale_section.h"
 #include "report/teapot_runs.h"
 #include "report/tradeoff.h"
 #include "surfaces/tessellator.h"
@@ -296,36 +298,6 @@ std::string throughput_section(const PatchSet& teapot, bool quick) {
 // Section 7: subdivision and topology throughput from the benchmarks of the meshes and
 // subdivision issues (Google Benchmark, JSON output).
 
-std::optional<nlohmann::json> run_benchmark(const fs::path& program, const fs::path& json_file) {
-  if (!fs::exists(program)) return std::nullopt;
-  const std::string command = "'" + program.string() + "' --benchmark_out='" + json_file.string() +
-                              "' --benchmark_out_format=json > '" + json_file.string() + ".log' 2>&1";
-  if (std::system(command.c_str()) != 0) return std::nullopt;
-  std::ifstream in(json_file);
-  return nlohmann::json::parse(in);
-}
-
-// A benchmark's registered name: Google Benchmark appends "/iterations:3", "/real_time".
-std::string registered_name(std::string name) {
-  for (const std::string suffix : {"/real_time", "/manual_time"}) {
-    if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
-      name.resize(name.size() - suffix.size());
-    }
-  }
-  if (const auto k = name.find("/iterations:"); k != std::string::npos) name.resize(k);
-  return name;
-}
-
-std::map<std::string, double> cpu_seconds(const nlohmann::json& results) {
-  std::map<std::string, double> seconds;
-  for (const nlohmann::json& b : results.at("benchmarks")) {
-    const std::string unit = b.at("time_unit").get<std::string>();
-    const double scale = unit == "ns" ? 1e-9 : unit == "us" ? 1e-6 : unit == "ms" ? 1e-3 : 1.0;
-    seconds[registered_name(b.at("name").get<std::string>())] = b.at("cpu_time").get<double>() * scale;
-  }
-  return seconds;
-}
-
 std::string benchmark_tables(const fs::path& bench_dir, const fs::path& data);
 
 // Section 7, or a line saying why it failed (the rest of the report stands without it).
@@ -484,8 +456,11 @@ int run(const Arguments& arguments) {
   const std::string benchmarks = benchmark_section(arguments.bench_dir, arguments.data);
   std::cerr << "patchwork_report: NURBS sphere and torus\n";
   const NurbsSection nurbs = nurbs_section(arguments.data, quick);
+  std::cerr << "patchwork_report: scale and the per-frame path\n";
+  const fs::path cli = arguments.bench_dir.empty() ? fs::path() : arguments.bench_dir.parent_path() / "tools/patchwork";
+  const ReportSection scale = scale_section(arguments.bench_dir, cli, arguments.source_dir, arguments.data);
 
-  const std::string gnuplot = plots(methods) + hard_cases.gnuplot;
+  const std::string gnuplot = plots(methods) + hard_cases.gnuplot + scale.gnuplot;
   write_file_atomically(arguments.data / "plots.gp", gnuplot);
   const bool plotted =
       std::system(("cd '" + arguments.data.string() + "' && gnuplot plots.gp > plots.log 2>&1").c_str()) == 0;
@@ -508,6 +483,14 @@ int run(const Arguments& arguments) {
       md << "| " << method.name << " | "
          << (triangles ? count(static_cast<std::size_t>(std::lround(*triangles))) : "out of range") << " | "
          << (seconds ? text("%.3g", 1e3 * *seconds) : "out of range") << " |\n";
+      if (method.name != "patchwork adaptive") continue;
+      // The same meshes through a PreparedSurface made once (surfaces/prepared_surface.h).
+      std::vector<TradeoffPoint> prepared = tradeoff(method.runs, diagonal, true);
+      for (std::size_t k = 0; k < prepared.size(); ++k) prepared[k].cost = method.runs[k].seconds_prepared;
+      const auto prepared_seconds = cost_at_error(prepared, 1e-3);
+      md << "| patchwork adaptive, prepared surface (the per-frame call) | "
+         << (triangles ? count(static_cast<std::size_t>(std::lround(*triangles))) : "out of range") << " | "
+         << (prepared_seconds ? text("%.3g", 1e3 * *prepared_seconds) : "out of range") << " |\n";
     }
     md << "\n";
   }
@@ -556,7 +539,7 @@ int run(const Arguments& arguments) {
     for (const std::string& m : ratios.missed) md << "- " << m << "\n";
     md << "\n" << why_missed(ratios, methods);
   }
-  md << throughput << hard_cases.markdown << "\n" << benchmarks << nurbs.section.markdown;
+  md << throughput << hard_cases.markdown << "\n" << benchmarks << nurbs.section.markdown << scale.markdown;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   md << "---\nThis run took " << text("%.0f", seconds) << " s.\n";
   write_file_atomically(arguments.out, md.str());

@@ -36,6 +36,9 @@ struct Run {
   double seconds_min = kNone;
   /// Median seconds on two threads (patchwork only).
   double seconds_two_threads = kNone;
+  /// Median seconds, one thread, through a PreparedSurface made once and one Tessellation
+  /// reused from call to call: the per-frame call (patchwork only).
+  double seconds_prepared = kNone;
   /// The method's own a-priori bound and its own measured error, absolute (patchwork only).
   double error_bound = kNone;
   double own_error = kNone;
