@@ -315,7 +315,179 @@ void check_grid_output(int n, int m, const PatchGridWeights& weights, const Grid
   }
 }
 
+void check_points_output(std::span<const Vec2> uvs, const GridSamplesView& out) {
+  if (out.points.size() < uvs.size() || out.normals.size() < uvs.size() ||
+      (!out.tangents.empty() && out.tangents.size() < uvs.size())) {
+    throw InvalidInput(message("evaluate_points: room for ", std::min(out.points.size(), out.normals.size()),
+                               " samples, ", uvs.size(), " points"));
+  }
+  for (const Vec2& uv : uvs) {
+    if (!uv.allFinite())
+      throw InvalidInput(message("evaluate_points: parameter (", uv.x(), ", ", uv.y(), ") is not finite"));
+  }
+}
+
+namespace {
+// values[0..d-1] of degree d - 1 raised to degree d in place (de Casteljau's recurrence
+// B_i^d = (1 - t) B_i^(d-1) + t B_(i-1)^(d-1)).
+void raise_bernstein_degree(int d, double t, double* values) {
+  double carry = 0.0;
+  for (int i = 0; i < d; ++i) {
+    const double b = values[i];
+    values[i] = carry + (1.0 - t) * b;
+    carry = t * b;
+  }
+  values[d] = carry;
+}
+}  // namespace
+
+void bernstein_values_and_derivatives(int n, double t, double* values, double* derivatives) {
+  // B_i^n' = n (B_{i-1}^{n-1} - B_i^{n-1}): the values of degree n-1 first, then both.
+  values[0] = 1.0;
+  for (int d = 1; d < n; ++d) raise_bernstein_degree(d, t, values);
+  if (n == 0) {
+    derivatives[0] = 0.0;
+    return;
+  }
+  // values[0..n-1] now hold degree n - 1.
+  for (int i = 0; i <= n; ++i) {
+    const double left = i > 0 ? values[i - 1] : 0.0;
+    const double right = i < n ? values[i] : 0.0;
+    derivatives[i] = n * (left - right);
+  }
+  raise_bernstein_degree(n, t, values);
+}
+
+DegeneracyThresholds degeneracy_thresholds(int n, int m, double scale) {
+  return {1e-12 * std::max(n * m, 1) * scale * scale, 1e-12 * std::max({n, m, 1}) * scale};
+}
+
 }  // namespace detail
+
+namespace {
+
+// F, F_u and F_v for degrees (N, M), both at most 3: the Bernstein sums unrolled at compile
+// time, in plain doubles (Eigen's small-vector expressions were not inlined here).
+template <int N, int M>
+void fixed_sums(const std::vector<Vec3>& P, double u, double v, Vec3& f, Vec3& fu, Vec3& fv) {
+  std::array<double, N + 1> bu;
+  std::array<double, N + 1> dbu;
+  std::array<double, M + 1> bv;
+  std::array<double, M + 1> dbv;
+  detail::bernstein_values_and_derivatives(N, u, bu.data(), dbu.data());
+  detail::bernstein_values_and_derivatives(M, v, bv.data(), dbv.data());
+  double point[3] = {0.0, 0.0, 0.0};
+  double du[3] = {0.0, 0.0, 0.0};
+  double dv[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i <= N; ++i) {
+    double q[3] = {0.0, 0.0, 0.0};
+    double dq[3] = {0.0, 0.0, 0.0};
+    for (int j = 0; j <= M; ++j) {
+      const double* c = P[static_cast<std::size_t>(i + (N + 1) * j)].data();
+      const double b = bv[static_cast<std::size_t>(j)];
+      const double db = dbv[static_cast<std::size_t>(j)];
+      for (int x = 0; x < 3; ++x) {
+        q[x] += b * c[x];
+        dq[x] += db * c[x];
+      }
+    }
+    const double b = bu[static_cast<std::size_t>(i)];
+    const double db = dbu[static_cast<std::size_t>(i)];
+    for (int x = 0; x < 3; ++x) {
+      point[x] += b * q[x];
+      du[x] += db * q[x];
+      dv[x] += b * dq[x];
+    }
+  }
+  f = Vec3(point[0], point[1], point[2]);
+  fu = Vec3(du[0], du[1], du[2]);
+  fv = Vec3(dv[0], dv[1], dv[2]);
+}
+
+// evaluate_points for degrees (N, M), both at most 3.
+template <int N, int M>
+void evaluate_points_fixed(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out, double threshold,
+                           double derivative_threshold) {
+  for (std::size_t k = 0; k < uvs.size(); ++k) {
+    Vec3 point, du, dv;
+    fixed_sums<N, M>(patch.control_points(), uvs[k].x(), uvs[k].y(), point, du, dv);
+    detail::store_sample(patch, uvs[k].x(), uvs[k].y(), point, du, dv, threshold, derivative_threshold, k, out);
+  }
+}
+
+// evaluate_point for degrees (N, M), both at most 3.
+template <int N, int M>
+Vec3 evaluate_point_fixed(const BezierPatch3& patch, double u, double v) {
+  Vec3 point, du, dv;
+  fixed_sums<N, M>(patch.control_points(), u, v, point, du, dv);
+  return point;
+}
+
+template <int N>
+Vec3 evaluate_point_fixed_u(int m, const BezierPatch3& patch, double u, double v) {
+  switch (m) {
+    case 1:
+      return evaluate_point_fixed<N, 1>(patch, u, v);
+    case 2:
+      return evaluate_point_fixed<N, 2>(patch, u, v);
+    default:
+      return evaluate_point_fixed<N, 3>(patch, u, v);
+  }
+}
+
+template <int N>
+bool evaluate_points_fixed_u(int m, const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out,
+                             double threshold, double derivative_threshold) {
+  switch (m) {
+    case 1:
+      evaluate_points_fixed<N, 1>(patch, uvs, out, threshold, derivative_threshold);
+      return true;
+    case 2:
+      evaluate_points_fixed<N, 2>(patch, uvs, out, threshold, derivative_threshold);
+      return true;
+    case 3:
+      evaluate_points_fixed<N, 3>(patch, uvs, out, threshold, derivative_threshold);
+      return true;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+Vec3 evaluate_point(const BezierPatch3& patch, double u, double v) {
+  const int n = patch.degree_u();
+  const int m = patch.degree_v();
+  if (m >= 1 && m <= 3) {
+    if (n == 1) return evaluate_point_fixed_u<1>(m, patch, u, v);
+    if (n == 2) return evaluate_point_fixed_u<2>(m, patch, u, v);
+    if (n == 3) return evaluate_point_fixed_u<3>(m, patch, u, v);
+  }
+  return patch.evaluate(u, v);
+}
+
+void evaluate_points(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out) {
+  detail::check_points_output(uvs, out);
+  const int n = patch.degree_u();
+  const int m = patch.degree_v();
+  // Degeneracy is judged as in evaluate_grid: relative to the net's size.
+  Eigen::AlignedBox3d box(patch.control_points().front());
+  for (const Vec3& p : patch.control_points()) box.extend(p);
+  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(n, m, box.diagonal().norm());
+  // The usual degrees (the teapot's are 3) unrolled.
+  if ((n == 1 && evaluate_points_fixed_u<1>(m, patch, uvs, out, threshold, derivative_threshold)) ||
+      (n == 2 && evaluate_points_fixed_u<2>(m, patch, uvs, out, threshold, derivative_threshold)) ||
+      (n == 3 && evaluate_points_fixed_u<3>(m, patch, uvs, out, threshold, derivative_threshold))) {
+    return;
+  }
+  for (std::size_t k = 0; k < uvs.size(); ++k) {
+    const double u = uvs[k].x();
+    const double v = uvs[k].y();
+    Vec3 point, du, dv;
+    detail::bernstein_sums(patch.control_points(), n, m, u, v, point, du, dv);
+    detail::store_sample(patch, u, v, point, du, dv, threshold, derivative_threshold, k, out);
+  }
+}
 
 namespace {
 
@@ -330,9 +502,7 @@ void evaluate_grid_with(const BezierPatch3& patch, const PatchGridWeights& weigh
   // Degeneracy is judged as in unit_normal: relative to the net's size.
   Eigen::AlignedBox3d box(patch.control_points().front());
   for (const Vec3& p : patch.control_points()) box.extend(p);
-  const double scale = box.diagonal().norm();
-  const double threshold = 1e-12 * std::max(n * m, 1) * scale * scale;
-  const double derivative_threshold = 1e-12 * std::max({n, m, 1}) * scale;
+  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(n, m, box.diagonal().norm());
   // The usual degrees (the teapot's are 3) without tangents take the vectorised path.
   if (!with_tangents && count_u == 1 && count_v > 1 && m >= 1 && m <= 3) {
     if (m == 1) evaluate_grid_column<1>(patch, weights, out, threshold, allow_avx2);

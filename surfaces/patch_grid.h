@@ -91,7 +91,69 @@ void evaluate_grid(const BezierPatch3& patch, const PatchGridWeights& weights, G
 /// \throws InvalidInput as evaluate_grid(BezierPatch3, ...) does.
 void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& weights, GridSamplesView out);
 
+/// evaluate_grid's samples at a list of parameter pairs that is no grid (a piece's boundary
+/// points): sample k of `out` is at uvs[k] (tangents if out.tangents is not empty). For a few
+/// points this costs far less than a grid's tables.
+/// \throws InvalidInput if a parameter is not finite or a span of `out` is shorter than `uvs`
+///         (tangents: empty or at least as long).
+void evaluate_points(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out);
+
+/// F(u, v) by the Bernstein sums sum_ij B_i^n(u) B_j^m(v) P_ij (nonnegative weights summing to
+/// 1 on [0,1]^2): the cheap form for many single points (a bound's samples) where
+/// BezierPatch::evaluate's de Casteljau costs some five times as much. \pre u, v finite.
+Vec3 evaluate_point(const BezierPatch3& patch, double u, double v);
+
+/// evaluate_points for a rational patch (F = H / w, as its evaluate_grid).
+void evaluate_points(const RationalBezierPatch& patch, std::span<const Vec2> uvs, GridSamplesView out);
+
 namespace detail {
+/// Checks the parameters and the room in `out` for evaluate_points. \throws InvalidInput.
+void check_points_output(std::span<const Vec2> uvs, const GridSamplesView& out);
+
+/// B_i^n(t) and d/dt B_i^n(t) for i = 0..n into values[0..n], derivatives[0..n].
+void bernstein_values_and_derivatives(int n, double t, double* values, double* derivatives);
+
+/// When evaluate_grid takes a normal or a tangent for degenerate, for degrees (n, m) and a net
+/// of size `scale` (its box diagonal): |F_u x F_v| <= normal, a tangent's part <= derivative.
+struct DegeneracyThresholds {
+  double normal;
+  double derivative;
+};
+DegeneracyThresholds degeneracy_thresholds(int n, int m, double scale);
+
+/// F, F_u and F_v at (u, v) of the net `points` (P_ij at i + (n+1) j; Vec3 or homogeneous Vec4)
+/// by the Bernstein sums: the point evaluators' loop for any degrees.
+template <class Point>
+void bernstein_sums(const std::vector<Point>& points, int n, int m, double u, double v, Point& f, Point& fu,
+                    Point& fv) {
+  thread_local std::vector<double> bu, dbu, bv, dbv;
+  bu.resize(static_cast<std::size_t>(n) + 1), dbu.resize(bu.size());
+  bv.resize(static_cast<std::size_t>(m) + 1), dbv.resize(bv.size());
+  bernstein_values_and_derivatives(n, u, bu.data(), dbu.data());
+  bernstein_values_and_derivatives(m, v, bv.data(), dbv.data());
+  f.setZero(), fu.setZero(), fv.setZero();
+  for (std::size_t i = 0; i < bu.size(); ++i) {
+    Point q = Point::Zero();
+    Point dq = Point::Zero();
+    for (std::size_t j = 0; j < bv.size(); ++j) {
+      q += bv[j] * points[i + bu.size() * j];
+      dq += dbv[j] * points[i + bu.size() * j];
+    }
+    f += bu[i] * q;
+    fu += dbu[i] * q;
+    fv += bu[i] * dq;
+  }
+}
+
+/// F = h / w and its partials from the homogeneous point h = (w F, w) and its partials (the
+/// quotient rule: F_u = (h_u - F w_u) / w).
+inline void project_homogeneous(const Vec4& h, const Vec4& hu, const Vec4& hv, Vec3& point, Vec3& du, Vec3& dv) {
+  const double w = h[3];
+  point = h.head<3>() / w;
+  du = (hu.head<3>() - point * hu[3]) / w;
+  dv = (hv.head<3>() - point * hv[3]) / w;
+}
+
 /// Checks the weights' degrees against (n, m) and the room in `out`. \throws InvalidInput.
 void check_grid_output(int n, int m, const PatchGridWeights& weights, const GridSamplesView& out);
 

@@ -17,9 +17,7 @@ void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& wei
   const BezierPatch4& H = patch.homogeneous();
   Eigen::AlignedBox3d box(H.control_points().front().head<3>() / H.control_points().front()[3]);
   for (const Vec4& h : H.control_points()) box.extend(Vec3(h.head<3>() / h[3]));
-  const double scale = box.diagonal().norm();
-  const double threshold = 1e-12 * std::max(n * m, 1) * scale * scale;
-  const double derivative_threshold = 1e-12 * std::max({n, m, 1}) * scale;
+  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(n, m, box.diagonal().norm());
   std::vector<Vec4> Q(static_cast<std::size_t>(n) + 1);
   std::vector<Vec4> dQ(static_cast<std::size_t>(n) + 1);
   for (std::size_t b = 0; b < count_v; ++b) {
@@ -45,13 +43,31 @@ void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& wei
         hu += dbu[i] * Q[i];
         hv += bu[i] * dQ[i];
       }
-      const double w = h[3];
-      const Vec3 point = h.head<3>() / w;
-      const Vec3 du = (hu.head<3>() - point * hu[3]) / w;
-      const Vec3 dv = (hv.head<3>() - point * hv[3]) / w;
+      Vec3 point, du, dv;
+      detail::project_homogeneous(h, hu, hv, point, du, dv);
       detail::store_sample(patch, weights.us()[a], weights.vs()[b], point, du, dv, threshold, derivative_threshold,
                            a + count_u * b, out);
     }
+  }
+}
+
+void evaluate_points(const RationalBezierPatch& patch, std::span<const Vec2> uvs, GridSamplesView out) {
+  detail::check_points_output(uvs, out);
+  const int n = patch.degree_u();
+  const int m = patch.degree_v();
+  // Degeneracy is judged as in evaluate_grid: relative to the size of the net of points P_ij.
+  const BezierPatch4& H = patch.homogeneous();
+  Eigen::AlignedBox3d box(H.control_points().front().head<3>() / H.control_points().front()[3]);
+  for (const Vec4& h : H.control_points()) box.extend(Vec3(h.head<3>() / h[3]));
+  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(n, m, box.diagonal().norm());
+  for (std::size_t k = 0; k < uvs.size(); ++k) {
+    const double u = uvs[k].x();
+    const double v = uvs[k].y();
+    Vec4 h, hu, hv;
+    detail::bernstein_sums(H.control_points(), n, m, u, v, h, hu, hv);
+    Vec3 point, du, dv;
+    detail::project_homogeneous(h, hu, hv, point, du, dv);
+    detail::store_sample(patch, u, v, point, du, dv, threshold, derivative_threshold, k, out);
   }
 }
 

@@ -126,9 +126,16 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     weights.assign(net.degree_u(), net.degree_v(), us, vs);
     evaluate_grid(net, weights, out);
   };
+  const auto points_of = [&set](std::uint32_t patch, std::span<const Vec2> uvs, GridSamplesView out) {
+    if (const RationalBezierPatch* rational = set.rational(patch)) {
+      evaluate_points(*rational, uvs, out);
+    } else {
+      evaluate_points(set.control_nets()[patch], uvs, out);
+    }
+  };
   const auto point_of = [&set](std::uint32_t patch, double u, double v) {
     const RationalBezierPatch* rational = set.rational(patch);
-    return rational != nullptr ? rational->evaluate(u, v) : set.control_nets()[patch].evaluate(u, v);
+    return rational != nullptr ? rational->evaluate(u, v) : evaluate_point(set.control_nets()[patch], u, v);
   };
   if (k == 1) {
     pieces.count = patches.size();
@@ -144,6 +151,7 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     if (with_solids) pieces.solids = solids_of(set);
     for (std::size_t p = 0; p < patches.size(); ++p) pieces.bounds.push_back(split_bounds(cells[p], 1, 0, 0));
     pieces.evaluate_grid = grid_of;
+    pieces.evaluate_points = points_of;
     pieces.evaluate = point_of;
     return pieces;
   }
@@ -204,6 +212,13 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     for (std::size_t k = 0; k < us.size(); ++k) patch_us[k] = d.u0 + d.size * us[k];
     for (std::size_t k = 0; k < vs.size(); ++k) patch_vs[k] = d.v0 + d.size * vs[k];
     grid_of(d.patch, patch_us, patch_vs, out);
+  };
+  pieces.evaluate_points = [points_of, domains](std::uint32_t q, std::span<const Vec2> uvs, GridSamplesView out) {
+    const SurfacePieces::Domain& d = domains[q];
+    thread_local std::vector<Vec2> patch_uvs;
+    patch_uvs.resize(uvs.size());
+    for (std::size_t k = 0; k < uvs.size(); ++k) patch_uvs[k] = Vec2(d.u0, d.v0) + d.size * uvs[k];
+    points_of(d.patch, patch_uvs, out);
   };
   pieces.evaluate = [point_of, domains](std::uint32_t q, double u, double v) {
     const SurfacePieces::Domain& d = domains[q];

@@ -76,6 +76,93 @@ TEST(PatchGrid, CollapsedEdgeGetsTheLimitNormal) {
   }
 }
 
+// The boundary points' evaluator gives the grid's samples at any list of points: positions,
+// normals (the limit normal on a collapsed edge) and tangents, for polynomial patches of every
+// degree (the unrolled ones up to 3 and the general loop) and rational ones.
+RC_GTEST_PROP(PatchGrid, PointListMatchesTheGridSamples, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 5);
+  const bool rational = *rc::gen::arbitrary<bool>();
+  std::vector<double> weights(patch.control_points().size(), 1.0);
+  if (rational) {
+    for (double& w : weights) w = *rc::gen::inRange(1, 17) / 4.0;
+  }
+  const RationalBezierPatch homogeneous(patch.degree_u(), patch.degree_v(), patch.control_points(), weights);
+  std::vector<Vec2> uvs;
+  for (int k = *rc::gen::inRange(1, 12); k > 0; --k) {
+    // Corners and edges as often as interior points: a pattern's boundary.
+    const auto coordinate = [] { return *rc::gen::inRange(0, 9) / 8.0; };
+    uvs.emplace_back(coordinate(), coordinate());
+  }
+  const bool tangents = *rc::gen::arbitrary<bool>();
+  std::vector<Vec3> points(uvs.size()), normals(uvs.size()), grid_points(1), grid_normals(1);
+  std::vector<Vec4> with(tangents ? uvs.size() : 0), grid_tangents(tangents ? 1 : 0);
+  try {
+    if (rational) {
+      evaluate_points(homogeneous, uvs, {points, normals, with});
+    } else {
+      evaluate_points(patch, uvs, {points, normals, with});
+    }
+  } catch (const NumericalError&) {
+    RC_DISCARD("a point without a normal (generated nets can be degenerate)");
+  }
+  const double scale = testing::net_scale(patch);
+  for (std::size_t k = 0; k < uvs.size(); ++k) {
+    const std::array<double, 1> u = {uvs[k].x()};
+    const std::array<double, 1> v = {uvs[k].y()};
+    const PatchGridWeights one(patch.degree_u(), patch.degree_v(), u, v);
+    if (rational) {
+      evaluate_grid(homogeneous, one, {grid_points, grid_normals, grid_tangents});
+    } else {
+      evaluate_grid(patch, one, {grid_points, grid_normals, grid_tangents});
+    }
+    RC_ASSERT((points[k] - grid_points[0]).norm() <= 1e-13 * scale);
+    // Normals agree to the rounding of the derivatives over |F_u x F_v|: the conditioning
+    // |F_u| |F_v| / |F_u x F_v| scales the difference (as against pointwise evaluation above).
+    const PartialDerivatives<3> d =
+        rational ? partial_derivatives(homogeneous, u[0], v[0], 1) : partial_derivatives(patch, u[0], v[0], 1);
+    const double cross = d.at(1, 0).cross(d.at(0, 1)).norm();
+    if (cross > 1e-6 * scale * scale) {
+      const double conditioning = d.at(1, 0).norm() * d.at(0, 1).norm() / cross;
+      RC_ASSERT((normals[k] - grid_normals[0]).norm() <= 1e-12 * conditioning);
+      if (tangents) RC_ASSERT((with[k] - grid_tangents[0]).norm() <= 1e-11 * conditioning * conditioning);
+    }
+    if (!rational) RC_ASSERT((evaluate_point(patch, u[0], v[0]) - patch.evaluate(u[0], v[0])).norm() <= 1e-13 * scale);
+  }
+}
+
+TEST(PatchGrid, PointListGetsTheLimitNormalAndRefusesBadInput) {
+  const BezierPatch3 patch = testing::product_patch({Vec3(1, 0, 1), Vec3(0.5, 0.5, 0), Vec3(0, 1, 1)},
+                                                    {Vec3(0, 0, 0), Vec3(0.5, 0.5, 0), Vec3(1, 1, 1)});
+  const std::vector<Vec2> uvs = {Vec2(0, 0), Vec2(0.25, 0), Vec2(1, 0), Vec2(0.5, 0.5)};
+  std::vector<Vec3> points(uvs.size()), normals(uvs.size());
+  evaluate_points(patch, uvs, {points, normals, {}});
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_LT((normals[k] - Vec3(0, 0, -1)).norm(), 1e-12);
+    EXPECT_LT(points[k].norm(), 1e-15);
+  }
+  EXPECT_LT((points[3] - patch.evaluate(0.5, 0.5)).norm(), 1e-15);
+  std::vector<Vec3> short_points(2), short_normals(2);
+  EXPECT_THROW(evaluate_points(patch, uvs, {short_points, short_normals, {}}), InvalidInput);
+  const std::vector<Vec2> bad = {Vec2(0.5, std::nan(""))};
+  EXPECT_THROW(evaluate_points(patch, bad, {points, normals, {}}), InvalidInput);
+}
+
+// The Bernstein values and derivatives of the point evaluators against the curves module's.
+TEST(PatchGrid, BernsteinValuesAndDerivativesMatchTheCurvesModule) {
+  for (int n = 0; n <= 7; ++n) {
+    for (const double t : {0.0, 0.125, 1.0 / 3.0, 0.5, 0.9, 1.0}) {
+      std::vector<double> values(static_cast<std::size_t>(n) + 1), derivatives(values.size());
+      detail::bernstein_values_and_derivatives(n, t, values.data(), derivatives.data());
+      const std::vector<double> expected = bernstein_all(n, t);
+      const std::vector<double> expected_derivatives = bernstein_all_derivatives(n, t, 1);
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        EXPECT_NEAR(values[i], expected[i], 1e-15) << "n " << n << " t " << t << " i " << i;
+        EXPECT_NEAR(derivatives[i], expected_derivatives[i], 1e-13) << "n " << n << " t " << t << " i " << i;
+      }
+    }
+  }
+}
+
 TEST(PatchGrid, RejectsMismatchedDegrees) {
   const BezierPatch3 patch = testing::bilinear(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0));
   EXPECT_THROW(evaluate_grid(patch, PatchGridWeights::uniform(3, 3, 2, 2)), InvalidInput);
