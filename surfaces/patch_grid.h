@@ -168,7 +168,7 @@ void store_sample(const Patch& patch, double u, double v, const Vec3& point, con
   const Vec3 normal = du.cross(dv);
   const double length = normal.norm();
   const bool regular = length > threshold;
-  const Vec3 unit = regular ? Vec3(normal / length) : unit_normal(patch, u, v);
+  const Vec3 unit = regular ? Vec3(normal / length) : degenerate_unit_normal(patch, u, v);
   out.normals[index] = unit;
   if (out.tangents.empty()) return;
   const Vec3 tangent = du - du.dot(unit) * unit;

@@ -70,13 +70,37 @@ Vec3 normal(const RationalBezierPatch& patch, double u, double v) {
   return F.at(1, 0).cross(F.at(0, 1));
 }
 
+namespace {
+
+// The limit normal where F_u x F_v vanishes. Nearly every such point (a pole) has it at the
+// first order past the normal's own, from derivatives up to order 2: those are tried first (a
+// sixth of the partials of the full order for bicubics), and the full order only where they do
+// not decide. partial_derivatives' low orders do not depend on the order asked for, so the
+// answer is the same bit for bit.
+template <class Patch>
+Vec3 staged_limit_normal(const Patch& patch, double u, double v, double scale) {
+  const int n = patch.degree_u();
+  const int m = patch.degree_v();
+  const int full = max_normal_order(n, m) + 1;
+  if (full > 2) {
+    try {
+      return detail::limit_unit_normal(partial_derivatives(patch, u, v, 2), u, v, scale, n, m);
+    } catch (const NumericalError&) {
+      // Degenerate to a higher order: the full table below.
+    }
+  }
+  return detail::limit_unit_normal(partial_derivatives(patch, u, v, full), u, v, scale, n, m);
+}
+
+}  // namespace
+
 Vec3 unit_normal(const BezierPatch3& patch, double u, double v) {
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   const double scale = net_size(patch.control_points());
   const Vec3 first = normal(patch, u, v);
   if (first.norm() > 1e-12 * std::max(n * m, 1) * scale * scale) return first.normalized();
-  return detail::limit_unit_normal(partial_derivatives(patch, u, v, max_normal_order(n, m) + 1), u, v, scale, n, m);
+  return staged_limit_normal(patch, u, v, scale);
 }
 
 namespace {
@@ -148,7 +172,19 @@ Vec3 unit_normal(const RationalBezierPatch& patch, double u, double v) {
   const double scale = net_scale(patch);
   const Vec3 first = normal(patch, u, v);
   if (first.norm() > 1e-12 * std::max(n * m, 1) * scale * scale) return first.normalized();
-  return detail::limit_unit_normal(partial_derivatives(patch, u, v, max_normal_order(n, m) + 1), u, v, scale, n, m);
+  return staged_limit_normal(patch, u, v, scale);
 }
+
+namespace detail {
+
+Vec3 degenerate_unit_normal(const BezierPatch3& patch, double u, double v) {
+  return staged_limit_normal(patch, u, v, net_size(patch.control_points()));
+}
+
+Vec3 degenerate_unit_normal(const RationalBezierPatch& patch, double u, double v) {
+  return staged_limit_normal(patch, u, v, net_scale(patch));
+}
+
+}  // namespace detail
 
 }  // namespace patchwork

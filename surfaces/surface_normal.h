@@ -47,5 +47,12 @@ namespace detail {
 /// is the patch's size (vanishing is judged relative to it), n and m its degrees.
 Vec3 limit_unit_normal(const PartialDerivatives<3>& derivatives, double u, double v, double scale, int n, int m);
 
+/// unit_normal where the caller has found F_u x F_v vanishing (a grid sample at a pole): the
+/// limit normal without evaluating the first-order normal again; unit_normal's value there.
+/// \throws NumericalError as unit_normal.
+Vec3 degenerate_unit_normal(const BezierPatch3& patch, double u, double v);
+/// degenerate_unit_normal of a rational patch.
+Vec3 degenerate_unit_normal(const RationalBezierPatch& patch, double u, double v);
+
 }  // namespace detail
 }  // namespace patchwork

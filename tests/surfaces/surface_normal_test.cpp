@@ -4,6 +4,7 @@
 #include <rapidcheck/gtest.h>
 
 #include "core/errors.h"
+#include "surfaces/rational_bezier_patch.h"
 #include "tests/surfaces/patch_fixtures.h"
 
 namespace patchwork {
@@ -37,6 +38,47 @@ TEST(SurfaceNormal, CollapsedEdgeGivesTheLimitNormal) {
     // Continuity: the ordinary normal just inside tends to the limit (O(v) away from it).
     EXPECT_LT((unit_normal(patch, u, 1e-7) - n).norm(), 1e-6);
   }
+}
+
+// The limit normal tried from derivatives up to order 2 first is the one from the full table,
+// bit for bit: at a pole that order 2 decides (the collapsed paraboloid, the teapot's lid and
+// bottom) and at one where it does not (two rows collapsed into the pole, so F_v vanishes there
+// too and the normal appears at a higher order), polynomial and rational.
+TEST(SurfaceNormal, StagedLimitNormalIsTheFullOrdersBitForBit) {
+  const auto full = [](const auto& patch, double u, double v, double scale) {
+    const int order = std::min(patch.degree_u() + patch.degree_v(), 12) + 1;
+    return detail::limit_unit_normal(partial_derivatives(patch, u, v, order), u, v, scale, patch.degree_u(),
+                                     patch.degree_v());
+  };
+  const auto size = [](const std::vector<Vec3>& points) {
+    Eigen::AlignedBox3d box(points.front());
+    for (const Vec3& p : points) box.extend(p);
+    return box.diagonal().norm();
+  };
+  // A cubic-by-cubic dome over z = 1 - x^2 - y^2 whose rows j = 0 and j = 1 are the apex.
+  std::vector<Vec3> dome;
+  for (int j = 0; j <= 3; ++j) {
+    for (int i = 0; i <= 3; ++i) {
+      const double angle = 0.5 * 3.14159265358979323846 * i / 3.0;
+      const double r = j < 2 ? 0.0 : (j - 1) / 2.0;
+      dome.emplace_back(r * std::cos(angle), r * std::sin(angle), 1.0 - r * r);
+    }
+  }
+  const BezierPatch3 double_pole(3, 3, dome);
+  const BezierPatch3 single_pole = collapsed_paraboloid();
+  for (const BezierPatch3* patch : {&single_pole, &double_pole}) {
+    const RationalBezierPatch rational = as_rational(*patch);
+    for (const double u : {0.0, 0.25, 1.0 / 3.0, 0.5, 1.0}) {
+      const Vec3 staged = unit_normal(*patch, u, 0.0);
+      EXPECT_EQ(staged, full(*patch, u, 0.0, size(patch->control_points()))) << "u " << u;
+      EXPECT_NEAR(staged.norm(), 1.0, 1e-15);
+      EXPECT_EQ(unit_normal(rational, u, 0.0), full(rational, u, 0.0, size(patch->control_points()))) << "u " << u;
+    }
+  }
+  // The double pole needs more than order 2: with only that much there is no normal.
+  EXPECT_THROW(detail::limit_unit_normal(partial_derivatives(double_pole, 0.5, 0.0, 2), 0.5, 0.0,
+                                         size(double_pole.control_points()), 3, 3),
+               NumericalError);
 }
 
 TEST(SurfaceNormal, DegeneratePatchThrows) {
