@@ -41,6 +41,7 @@
 // Reading a file written here therefore gives every value rounded to float and back, exactly,
 // the positions as fl(float(fl(p - t)) + t).
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -107,16 +108,32 @@ GltfEncoding encode_gltf_levels(std::span<const RenderMesh> levels, std::span<co
                                 const GltfOptions& options = {});
 
 /// Writes `mesh` as .glb or .gltf, chosen by the extension (compared without regard to case),
-/// atomically (io/atomic_file.h): a failed write leaves no partial file. Returns the bound on the
+/// atomically (io/atomic_file.h): a failed write leaves no partial file. The file has format_gltf's
+/// bytes, but the buffer is never held whole: it goes to the file straight from the mesh's arrays,
+/// detail::gltf_chunk_elements elements at a time (docs/io.md, "Memory"). Returns the bound on the
 /// rounding of its positions (GltfEncoding::position_rounding).
 /// \throws IoError naming the path for another extension or a failed write; InvalidInput as
-///         format_gltf (nothing written).
+///         format_gltf (nothing written: every check runs before the file is created).
 double write_gltf(const std::filesystem::path& path, const RenderMesh& mesh, const GltfOptions& options = {});
 
 /// Writes a level-of-detail chain (format_gltf_levels) as write_gltf writes one mesh; returns the
 /// position rounding of each level.
 std::vector<double> write_gltf_levels(const std::filesystem::path& path, std::span<const RenderMesh> levels,
                                       std::span<const double> coverage, const GltfOptions& options = {});
+
+namespace detail {
+
+/// How many elements (vertices of one attribute, or indices) the writer converts to the file's
+/// types at once: the part of the buffer it holds (at most 16 bytes an element, 1 MiB).
+inline constexpr std::size_t gltf_chunk_elements = std::size_t{1} << 16;
+
+/// format_gltf_levels converting `chunk` elements at a time instead of gltf_chunk_elements: the
+/// same bytes for every chunk (what tests check). \throws InvalidInput as format_gltf_levels, or
+/// for a chunk of 0.
+std::string format_gltf_levels_in_chunks(std::span<const RenderMesh> levels, std::span<const double> coverage,
+                                         GltfFormat format, const GltfOptions& options, std::size_t chunk);
+
+}  // namespace detail
 
 /// The most memory parse_gltf lets the scene graph's placements of the mesh take (8 GiB): a
 /// small file can place a large mesh many times.

@@ -6,10 +6,12 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <numbers>
 #include <ostream>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
@@ -86,10 +88,13 @@ Camera parse_camera(const std::vector<std::string>& tokens) {
   return camera;
 }
 
-// The meshes of every level, finest first.
-std::vector<RenderMesh> level_meshes(const Tessellation& finest, const std::vector<Tessellation>& coarser) {
-  std::vector<RenderMesh> meshes = {finest.mesh};
-  for (const Tessellation& level : coarser) meshes.push_back(level.mesh);
+// The meshes of every level, finest first, moved out of their tessellations (not copied: the
+// finest alone can take gigabytes) into the one array write_gltf_levels takes.
+std::vector<RenderMesh> take_level_meshes(Tessellation& finest, std::vector<Tessellation>& coarser) {
+  std::vector<RenderMesh> meshes;
+  meshes.reserve(1 + coarser.size());
+  meshes.push_back(std::move(finest.mesh));
+  for (Tessellation& level : coarser) meshes.push_back(std::move(level.mesh));
   return meshes;
 }
 
@@ -174,7 +179,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   const PatchSet set = read_patch_set(arguments.input);
   report_progress(detail::message("read ", arguments.input, ": ", set.count(), " patches; tessellating"));
   const auto tessellation_start = std::chrono::steady_clock::now();
-  const Tessellation result = tessellate(set, options);
+  Tessellation result = tessellate(set, options);
   // Coarser levels of detail, each at its factor times the tolerance.
   std::vector<Tessellation> coarser;
   for (const double factor : arguments.lod_factors) {
@@ -187,8 +192,17 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   // The meter's share of that, every level's (the rest is tessellating).
   double measure_seconds = result.measure_seconds;
   for (const Tessellation& level : coarser) measure_seconds += level.measure_seconds;
-  report_progress(detail::message("tessellated in ", seconds, " s: ", result.mesh.triangle_count(), " triangles; writing ",
-                                  arguments.output));
+  // What the summary says of the meshes, kept before writing gives the meshes away.
+  const std::size_t triangles = result.mesh.triangle_count();
+  const std::size_t vertices = result.mesh.vertex_count();
+  std::vector<std::size_t> level_triangles;
+  level_triangles.reserve(coarser.size());
+  for (const Tessellation& level : coarser) level_triangles.push_back(level.mesh.triangle_count());
+  report_progress(
+      detail::message("tessellated in ", seconds, " s: ", triangles, " triangles; writing ", arguments.output));
+  // No file holds the patch of each triangle (4 bytes a triangle): freed before writing.
+  result.triangle_patches = std::vector<std::uint32_t>();
+  for (Tessellation& level : coarser) level.triangle_patches = std::vector<std::uint32_t>();
   // The float rounding of each level's positions as written (OBJ, OFF and PLY hold doubles exactly).
   std::vector<double> rounding(1 + coarser.size(), 0.0);
   if (gltf) {
@@ -196,14 +210,19 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     // the inside, so such a mesh is double-sided.
     GltfOptions gltf_options;
     gltf_options.double_sided = !set.open_edges().empty();
+    // The writer streams the buffer from the mesh arrays (io/gltf.h): no copy of the file in memory.
     if (coarser.empty()) {
       rounding[0] = write_gltf(arguments.output, result.mesh, gltf_options);
     } else {
-      rounding = write_gltf_levels(arguments.output, level_meshes(result, coarser),
-                                   screen_coverages(set, coarser, arguments.pixel_tolerance), gltf_options);
+      const std::vector<double> coverage = screen_coverages(set, coarser, arguments.pixel_tolerance);
+      rounding = write_gltf_levels(arguments.output, take_level_meshes(result, coarser), coverage, gltf_options);
     }
   } else {
-    write_mesh(arguments.output, welded_faces(result.mesh));
+    // The welded triangles are all an OBJ, OFF or PLY file holds: the render mesh (normals, split
+    // vertices) goes before the writer builds the file's text.
+    const FaceVertexMesh faces = welded_faces(result.mesh);
+    result.mesh = RenderMesh();
+    write_mesh(arguments.output, faces);
   }
   report_progress(detail::message("wrote ", arguments.output));
   // Edges joined across gaps (PatchSet's tolerance) can push the bound past the tolerance: said
@@ -217,8 +236,8 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   const double file_error_bound = result.error_bound + rounding[0];
   if (arguments.json) {
     const nlohmann::json document = {{"patches", set.count()},
-                                     {"triangles", result.mesh.triangle_count()},
-                                     {"vertices", result.mesh.vertex_count()},
+                                     {"triangles", triangles},
+                                     {"vertices", vertices},
                                      {"seconds", seconds},
                                      {"tessellation_seconds", seconds - measure_seconds},
                                      // Not measured (--no-measure): null, as measured_error.
@@ -236,8 +255,8 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   out << arguments.input << " -> " << arguments.output << "\n";
   out << "  patches:        " << set.count() << " (" << result.culled_patches << " culled, "
       << result.culled_triangles << " triangles saved)\n";
-  out << "  triangles:      " << result.mesh.triangle_count() << "\n";
-  out << "  vertices:       " << result.mesh.vertex_count() << " (" << result.welded_vertices << " welded points)\n";
+  out << "  triangles:      " << triangles << "\n";
+  out << "  vertices:       " << vertices << " (" << result.welded_vertices << " welded points)\n";
   out << "  seconds:        " << seconds - measure_seconds << " tessellating";
   if (options.measure) out << ", " << measure_seconds << " measuring";
   out << "\n";
@@ -258,7 +277,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
     out << "  measured error: not measured (--no-measure)\n";
   }
   for (std::size_t k = 0; k < coarser.size(); ++k) {
-    out << "  level " << k + 1 << ":        " << coarser[k].mesh.triangle_count() << " triangles, tolerance "
+    out << "  level " << k + 1 << ":        " << level_triangles[k] << " triangles, tolerance "
         << coarser[k].tolerance << ", bound " << coarser[k].error_bound << " (file "
         << coarser[k].error_bound + rounding[k + 1] << "), measured " << coarser[k].measured_error
         << "\n";

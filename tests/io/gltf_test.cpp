@@ -17,6 +17,7 @@
 #include <sstream>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/errors.h"
@@ -606,6 +607,101 @@ TEST(Gltf, NormalsAndTangentsAreUnitAsStoredFloats) {
     EXPECT_LT((raw.tangents[v].head<3>() - Vec3(t.x(), t.z(), -t.y()).normalized()).norm(), 2e-7);
     EXPECT_EQ(raw.tangents[v].w(), mesh.tangents[v].w());
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The bytes
+
+// FNV-1a, 64 bits (Fowler, Noll, Vo): a digest that pins a file's bytes in a test.
+std::uint64_t fnv1a(std::string_view bytes) {
+  std::uint64_t hash = 0xcbf29ce484222325u;
+  for (const char c : bytes) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 0x100000001b3u;
+  }
+  return hash;
+}
+
+// The meshes whose files are pinned, each with a name: every attribute (the cube, 16-bit
+// indices), positions alone (the square), more vertices than write_gltf converts at once (the
+// 300 x 300 grid: 90,000 vertices, 32-bit indices), and a level-of-detail chain.
+struct PinnedFile {
+  std::string name;
+  std::vector<RenderMesh> levels;
+  std::vector<double> coverage;
+};
+
+std::vector<PinnedFile> pinned_files() {
+  return {{"cube", {cube()}, {}},
+          {"square", {open_square()}, {}},
+          {"grid", {grid(300, 300)}, {}},
+          {"lod", {grid(8, 8), grid(4, 4), cube()}, {0.5, 0.125, 0.0}}};
+}
+
+TEST(Gltf, BytesAreThoseOfTheWriterBeforeStreaming) {
+  // Size and FNV-1a digest of each file as the writer of commit 52674cd gave it (tinygltf 2.7.0
+  // serialising a model that held the whole buffer): streaming the buffer must not move a byte.
+  struct Expected {
+    std::size_t size;
+    std::uint64_t digest;
+  };
+  const std::vector<std::pair<Expected, Expected>> expected = {
+      {{2504, 0xfaa0943c44422625}, {3909, 0xf1a52f8294bbb80d}},
+      {{844, 0x449e61c63e0f4a8c}, {1575, 0x1445aedb0201ccc3}},
+      {{6466944, 0xe6874aa1c1a8f93c}, {8623155, 0xc6ca8bbe5e7bed30}},
+      {{9072, 0x3f034a1caeabb0f4}, {13634, 0x56c911dd8b7b39d8}}};
+  const std::vector<PinnedFile> files = pinned_files();
+  ASSERT_EQ(files.size(), expected.size());
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    for (const GltfFormat format : {GltfFormat::glb, GltfFormat::gltf}) {
+      const std::string bytes = format_gltf_levels(files[k].levels, files[k].coverage, format);
+      const Expected& pinned = format == GltfFormat::glb ? expected[k].first : expected[k].second;
+      EXPECT_EQ(bytes.size(), pinned.size) << files[k].name << (format == GltfFormat::glb ? ".glb" : ".gltf");
+      EXPECT_EQ(fnv1a(bytes), pinned.digest) << std::hex << files[k].name << (format == GltfFormat::glb ? ".glb" : ".gltf");
+    }
+  }
+}
+
+TEST(Gltf, TheBytesDoNotDependOnHowManyElementsAreConvertedAtOnce) {
+  // Chunks of 1, 2 and 3 elements end inside a vertex's base64 group of 3 bytes and inside a
+  // bufferView's padding; 65,536 is write_gltf's (the grid's 90,000 vertices take two).
+  for (const PinnedFile& pinned : pinned_files()) {
+    for (const GltfFormat format : {GltfFormat::glb, GltfFormat::gltf}) {
+      SCOPED_TRACE(pinned.name + (format == GltfFormat::glb ? ".glb" : ".gltf"));
+      const std::string bytes = format_gltf_levels(pinned.levels, pinned.coverage, format);
+      const std::vector<std::size_t> chunks = pinned.name == "grid" ? std::vector<std::size_t>{7, 4096, 65536}
+                                                                    : std::vector<std::size_t>{1, 2, 3, 5, 64};
+      for (const std::size_t chunk : chunks) {
+        EXPECT_EQ(detail::format_gltf_levels_in_chunks(pinned.levels, pinned.coverage, format, {}, chunk), bytes)
+            << "chunk " << chunk;
+      }
+    }
+  }
+  EXPECT_THROW(detail::format_gltf_levels_in_chunks(pinned_files()[0].levels, {}, GltfFormat::glb, {}, 0), InvalidInput);
+}
+
+TEST_F(GltfFile, WriteGltfWritesTheBytesOfFormatGltf) {
+  // write_gltf streams the buffer into the file; format_gltf returns the same bytes: a mesh with
+  // normals, uvs and tangents in more than one chunk, a level-of-detail chain, both containers.
+  for (const PinnedFile& pinned : pinned_files()) {
+    for (const char* extension : {".glb", ".gltf"}) {
+      SCOPED_TRACE(pinned.name + extension);
+      const GltfFormat format = std::string(extension) == ".glb" ? GltfFormat::glb : GltfFormat::gltf;
+      const fs::path path = file(pinned.name + extension);
+      const GltfEncoding encoding = encode_gltf_levels(pinned.levels, pinned.coverage, format);
+      const std::vector<double> rounding =
+          pinned.levels.size() == 1 ? std::vector<double>{write_gltf(path, pinned.levels[0])}
+                                    : write_gltf_levels(path, pinned.levels, pinned.coverage);
+      EXPECT_EQ(rounding, encoding.position_rounding);
+      const std::string written = read_file(path);
+      ASSERT_EQ(written.size(), encoding.bytes.size());
+      const auto [at, _] = std::mismatch(written.begin(), written.end(), encoding.bytes.begin());
+      EXPECT_EQ(at, written.end()) << "first difference at byte " << (at - written.begin());
+    }
+  }
+  // The grid reads back as its float-rounded self (the second chunk's vertices included).
+  EXPECT_EQ(first_difference(read_gltf(file("grid.glb")), rounded(grid(300, 300))), "");
+  EXPECT_EQ(first_difference(read_gltf(file("grid.gltf")), rounded(grid(300, 300))), "");
 }
 
 // ---------------------------------------------------------------------------------------------
