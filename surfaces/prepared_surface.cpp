@@ -69,10 +69,16 @@ const SurfacePieces& PreparedSurface::pieces(int k, bool tight_diagonal, bool wi
 }
 
 Tessellation tessellate(const PreparedSurface& prepared, const TessellationOptions& options) {
-  return detail::fresh_tessellation([&](Tessellation& result) { tessellate(prepared, options, result); });
+  return detail::fresh_tessellation(
+      [&](Tessellation& result) { detail::tessellate_prepared(prepared, options, result, false); });
 }
 
 void tessellate(const PreparedSurface& prepared, const TessellationOptions& options, Tessellation& result) {
+  detail::tessellate_prepared(prepared, options, result, true);
+}
+
+void detail::tessellate_prepared(const PreparedSurface& prepared, const TessellationOptions& options,
+                                 Tessellation& result, bool keep_scratch) {
   using detail::SplitEstimate;
   const auto start = std::chrono::steady_clock::now();
   const bool relative = options.relative_tolerance.has_value();
@@ -105,7 +111,7 @@ void tessellate(const PreparedSurface& prepared, const TessellationOptions& opti
   // The grids found for the choice are the plan's (the same bounds at the same tolerance).
   const std::vector<GridSize>* planned = best.grids.empty() ? nullptr : &best.grids;
   const SurfacePieces& chosen = best_k == 1 ? whole : prepared.pieces(best_k, relative);
-  detail::Tessellator(chosen, options, planned).run(result);
+  detail::Tessellator(chosen, options, planned).run(result, keep_scratch);
   result.tessellation_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result.measure_seconds;
 }

@@ -27,9 +27,11 @@ void TessellatorScratchHandle::release() noexcept { scratch_.reset(); }
 
 // The stages in order (the header lists their files).
 // Tessellates into `result`, reusing its arrays' storage.
-void Tessellator::run(Tessellation& result) {
+void Tessellator::run(Tessellation& result, bool keep_scratch) {
   using clock = std::chrono::steady_clock;
-  const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+  const auto seconds_since = [](clock::time_point t) {
+    return std::chrono::duration<double>(clock::now() - t).count();
+  };
   const clock::time_point start = clock::now();
   plan_patches();
   build_edge_classes();
@@ -55,6 +57,18 @@ void Tessellator::run(Tessellation& result) {
     result.measured_error = measure(result.mesh);
     result.measure_seconds = seconds_since(measuring);
   }
+  if (!keep_scratch) {
+    result.scratch.release();
+    outputs_ = nullptr;
+    welded_positions_ = nullptr;
+    std::vector<PatchPlan>().swap(plans_);
+    std::vector<std::array<EdgeSlot, 4>>().swap(slots_);
+    std::vector<CompositeEdge>().swap(composites_);
+    std::vector<EdgeClass>().swap(classes_);
+    std::vector<std::uint32_t>().swap(corner_ids_);
+    std::vector<bool>().swap(corner_owner_);
+    std::vector<std::uint32_t>().swap(interior_first_);
+  }
   if (options_.optimize) optimize_vertex_cache(result);
   // The vertex-fetch order also drops unused vertices (PatchOutput::unused_interior).
   if (options_.optimize || unused_interior_) optimize_vertex_fetch(result.mesh);
@@ -67,20 +81,30 @@ void Tessellator::run(Tessellation& result) {
 
 }  // namespace detail
 
+namespace {
+
+// tessellate(set, options, result), preparing the set first (timed with the rest).
+void tessellate_set(const PatchSet& set, const TessellationOptions& options, Tessellation& result, bool keep_scratch) {
+  const auto start = std::chrono::steady_clock::now();
+  const PreparedSurface prepared(set);
+  detail::tessellate_prepared(prepared, options, result, keep_scratch);
+  result.tessellation_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result.measure_seconds;
+}
+
+}  // namespace
+
 Tessellation tessellate(const SurfacePieces& pieces, const TessellationOptions& options) {
-  return detail::fresh_tessellation([&](Tessellation& result) { detail::Tessellator(pieces, options).run(result); });
+  return detail::fresh_tessellation(
+      [&](Tessellation& result) { detail::Tessellator(pieces, options).run(result, false); });
 }
 
 Tessellation tessellate(const PatchSet& set, const TessellationOptions& options) {
-  return detail::fresh_tessellation([&](Tessellation& result) { tessellate(set, options, result); });
+  return detail::fresh_tessellation([&](Tessellation& result) { tessellate_set(set, options, result, false); });
 }
 
 void tessellate(const PatchSet& set, const TessellationOptions& options, Tessellation& result) {
-  const auto start = std::chrono::steady_clock::now();
-  const PreparedSurface prepared(set);
-  tessellate(prepared, options, result);
-  result.tessellation_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result.measure_seconds;
+  tessellate_set(set, options, result, true);
 }
 
 }  // namespace patchwork

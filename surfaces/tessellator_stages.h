@@ -28,6 +28,10 @@
 #include "surfaces/tessellation_pattern.h"
 #include "surfaces/tessellator.h"
 
+namespace patchwork {
+class PreparedSurface;
+}  // namespace patchwork
+
 namespace patchwork::detail {
 
 using Triangle = std::array<std::uint32_t, 3>;
@@ -123,7 +127,7 @@ struct CompositeEdge {
   std::vector<std::uint32_t> classes;
   std::vector<bool> reversed;  // class b runs against the long edge
   std::vector<EdgeRef> parts;
-  std::vector<bool> joined;    // part b is tessellated and owns class b
+  std::vector<bool> joined;  // part b is tessellated and owns class b
   std::uint32_t first_junction = 0;
 };
 
@@ -300,8 +304,11 @@ class Tessellator {
     PATCHWORK_ASSERT(planned == nullptr || (planned->size() == count_ && !options.camera), "one grid per piece");
   }
 
-  // Tessellates into `result`, reusing its arrays' storage.
-  void run(Tessellation& result);
+  // Tessellates into `result`, reusing its arrays' storage. Without `keep_scratch` (a result
+  // that is not passed in again) the per-piece scratch and the plan are freed once the mesh is
+  // assembled and measured, before the vertex order, whose tables are then the peak's only
+  // addition to the mesh (at 524,288 pieces the scratch was 1.1 GB of a 2.65 GB peak).
+  void run(Tessellation& result, bool keep_scratch = true);
 
  private:
   // --- rates ------------------------------------------------------------------------------
@@ -429,6 +436,11 @@ Tessellation fresh_tessellation(const Run& run) {
   result.scratch.release();
   return result;
 }
+
+/// tessellate(prepared, options, result); `keep_scratch` false for a result that is not passed
+/// in again (Tessellator::run).
+void tessellate_prepared(const PreparedSurface& prepared, const TessellationOptions& options, Tessellation& result,
+                         bool keep_scratch);
 
 // --- surface_pieces.cpp: patch sets as pieces -------------------------------------------------
 
