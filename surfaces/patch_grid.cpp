@@ -315,15 +315,15 @@ void check_grid_output(int n, int m, const PatchGridWeights& weights, const Grid
   }
 }
 
-void check_points_output(std::span<const Vec2> uvs, const GridSamplesView& out) {
+void check_samples_output(std::span<const Vec2> uvs, const GridSamplesView& out) {
   if (out.points.size() < uvs.size() || out.normals.size() < uvs.size() ||
       (!out.tangents.empty() && out.tangents.size() < uvs.size())) {
-    throw InvalidInput(message("evaluate_points: room for ", std::min(out.points.size(), out.normals.size()),
+    throw InvalidInput(message("evaluate_samples: room for ", std::min(out.points.size(), out.normals.size()),
                                " samples, ", uvs.size(), " points"));
   }
   for (const Vec2& uv : uvs) {
     if (!uv.allFinite())
-      throw InvalidInput(message("evaluate_points: parameter (", uv.x(), ", ", uv.y(), ") is not finite"));
+      throw InvalidInput(message("evaluate_samples: parameter (", uv.x(), ", ", uv.y(), ") is not finite"));
   }
 }
 
@@ -404,9 +404,9 @@ void fixed_sums(const std::vector<Vec3>& P, double u, double v, Vec3& f, Vec3& f
   fv = Vec3(dv[0], dv[1], dv[2]);
 }
 
-// evaluate_points for degrees (N, M), both at most 3.
+// evaluate_samples for degrees (N, M), both at most 3.
 template <int N, int M>
-void evaluate_points_fixed(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out, double threshold,
+void evaluate_samples_fixed(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out, double threshold,
                            double derivative_threshold) {
   for (std::size_t k = 0; k < uvs.size(); ++k) {
     Vec3 point, du, dv;
@@ -436,17 +436,17 @@ Vec3 evaluate_point_fixed_u(int m, const BezierPatch3& patch, double u, double v
 }
 
 template <int N>
-bool evaluate_points_fixed_u(int m, const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out,
+bool evaluate_samples_fixed_u(int m, const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out,
                              double threshold, double derivative_threshold) {
   switch (m) {
     case 1:
-      evaluate_points_fixed<N, 1>(patch, uvs, out, threshold, derivative_threshold);
+      evaluate_samples_fixed<N, 1>(patch, uvs, out, threshold, derivative_threshold);
       return true;
     case 2:
-      evaluate_points_fixed<N, 2>(patch, uvs, out, threshold, derivative_threshold);
+      evaluate_samples_fixed<N, 2>(patch, uvs, out, threshold, derivative_threshold);
       return true;
     case 3:
-      evaluate_points_fixed<N, 3>(patch, uvs, out, threshold, derivative_threshold);
+      evaluate_samples_fixed<N, 3>(patch, uvs, out, threshold, derivative_threshold);
       return true;
     default:
       return false;
@@ -466,8 +466,8 @@ Vec3 evaluate_point(const BezierPatch3& patch, double u, double v) {
   return patch.evaluate(u, v);
 }
 
-void evaluate_points(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out) {
-  detail::check_points_output(uvs, out);
+void evaluate_samples(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out) {
+  detail::check_samples_output(uvs, out);
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   // Degeneracy is judged as in evaluate_grid: relative to the net's size.
@@ -475,9 +475,9 @@ void evaluate_points(const BezierPatch3& patch, std::span<const Vec2> uvs, GridS
   for (const Vec3& p : patch.control_points()) box.extend(p);
   const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(n, m, box.diagonal().norm());
   // The usual degrees (the teapot's are 3) unrolled.
-  if ((n == 1 && evaluate_points_fixed_u<1>(m, patch, uvs, out, threshold, derivative_threshold)) ||
-      (n == 2 && evaluate_points_fixed_u<2>(m, patch, uvs, out, threshold, derivative_threshold)) ||
-      (n == 3 && evaluate_points_fixed_u<3>(m, patch, uvs, out, threshold, derivative_threshold))) {
+  if ((n == 1 && evaluate_samples_fixed_u<1>(m, patch, uvs, out, threshold, derivative_threshold)) ||
+      (n == 2 && evaluate_samples_fixed_u<2>(m, patch, uvs, out, threshold, derivative_threshold)) ||
+      (n == 3 && evaluate_samples_fixed_u<3>(m, patch, uvs, out, threshold, derivative_threshold))) {
     return;
   }
   for (std::size_t k = 0; k < uvs.size(); ++k) {

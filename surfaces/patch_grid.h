@@ -96,19 +96,19 @@ void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& wei
 /// points this costs far less than a grid's tables.
 /// \throws InvalidInput if a parameter is not finite or a span of `out` is shorter than `uvs`
 ///         (tangents: empty or at least as long).
-void evaluate_points(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out);
+void evaluate_samples(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out);
 
 /// F(u, v) by the Bernstein sums sum_ij B_i^n(u) B_j^m(v) P_ij (nonnegative weights summing to
 /// 1 on [0,1]^2): the cheap form for many single points (a bound's samples) where
 /// BezierPatch::evaluate's de Casteljau costs some five times as much. \pre u, v finite.
 Vec3 evaluate_point(const BezierPatch3& patch, double u, double v);
 
-/// evaluate_points for a rational patch (F = H / w, as its evaluate_grid).
-void evaluate_points(const RationalBezierPatch& patch, std::span<const Vec2> uvs, GridSamplesView out);
+/// evaluate_samples for a rational patch (F = H / w, as its evaluate_grid).
+void evaluate_samples(const RationalBezierPatch& patch, std::span<const Vec2> uvs, GridSamplesView out);
 
 namespace detail {
-/// Checks the parameters and the room in `out` for evaluate_points. \throws InvalidInput.
-void check_points_output(std::span<const Vec2> uvs, const GridSamplesView& out);
+/// Checks the parameters and the room in `out` for evaluate_samples. \throws InvalidInput.
+void check_samples_output(std::span<const Vec2> uvs, const GridSamplesView& out);
 
 /// B_i^n(t) and d/dt B_i^n(t) for i = 0..n into values[0..n], derivatives[0..n].
 void bernstein_values_and_derivatives(int n, double t, double* values, double* derivatives);

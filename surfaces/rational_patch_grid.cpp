@@ -51,8 +51,8 @@ void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& wei
   }
 }
 
-void evaluate_points(const RationalBezierPatch& patch, std::span<const Vec2> uvs, GridSamplesView out) {
-  detail::check_points_output(uvs, out);
+void evaluate_samples(const RationalBezierPatch& patch, std::span<const Vec2> uvs, GridSamplesView out) {
+  detail::check_samples_output(uvs, out);
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   // Degeneracy is judged as in evaluate_grid: relative to the size of the net of points P_ij.

@@ -128,9 +128,9 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
   };
   const auto points_of = [&set](std::uint32_t patch, std::span<const Vec2> uvs, GridSamplesView out) {
     if (const RationalBezierPatch* rational = set.rational(patch)) {
-      evaluate_points(*rational, uvs, out);
+      evaluate_samples(*rational, uvs, out);
     } else {
-      evaluate_points(set.control_nets()[patch], uvs, out);
+      evaluate_samples(set.control_nets()[patch], uvs, out);
     }
   };
   const auto point_of = [&set](std::uint32_t patch, double u, double v) {
@@ -151,7 +151,7 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     if (with_solids) pieces.solids = solids_of(set);
     for (std::size_t p = 0; p < patches.size(); ++p) pieces.bounds.push_back(split_bounds(cells[p], 1, 0, 0));
     pieces.evaluate_grid = grid_of;
-    pieces.evaluate_points = points_of;
+    pieces.evaluate_samples = points_of;
     pieces.evaluate = point_of;
     return pieces;
   }
@@ -219,7 +219,7 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     for (std::size_t k = 0; k < vs.size(); ++k) patch_vs[k] = d.v0 + d.size * vs[k];
     grid_of(d.patch, patch_us, patch_vs, out);
   };
-  pieces.evaluate_points = [points_of, domains](std::uint32_t q, std::span<const Vec2> uvs, GridSamplesView out) {
+  pieces.evaluate_samples = [points_of, domains](std::uint32_t q, std::span<const Vec2> uvs, GridSamplesView out) {
     const SurfacePieces::Domain& d = domains[q];
     thread_local std::vector<Vec2> patch_uvs;
     patch_uvs.resize(uvs.size());

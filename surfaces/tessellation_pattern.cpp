@@ -16,7 +16,8 @@ using Triangle = std::array<std::uint32_t, 3>;
 // grid (i, j), 1 <= i < inner_u, 1 <= j < inner_v, row by row.
 class PatternIndex {
  public:
-  PatternIndex(const PatternRates& rates, int inner_u, int inner_v) : inner_u_(inner_u), inner_v_(inner_v) {
+  // inner_v: the interior's rows need no count to be numbered (row j starts (inner_u - 1) j in).
+  PatternIndex(const PatternRates& rates, int inner_u, int /*inner_v*/) : inner_u_(inner_u) {
     std::uint32_t offset = 4;
     for (int k = 0; k < 4; ++k) {
       edge_offset_[k] = offset;
@@ -33,7 +34,6 @@ class PatternIndex {
 
  private:
   int inner_u_;
-  int inner_v_;
   std::array<std::uint32_t, 4> edge_offset_{};
   std::uint32_t interior_offset_ = 0;
 };

@@ -206,7 +206,7 @@ struct SurfacePieces {
   /// Piece p at the parameter pairs uvs, sample k into slot k of `out` (points, normals, and
   /// tangents when out.tangents is not empty), as evaluate_grid would give them: the boundary
   /// points of a piece in one call. Null: the tessellator evaluates each side as a grid.
-  std::function<void(std::uint32_t p, std::span<const Vec2> uvs, GridSamplesView out)> evaluate_points;
+  std::function<void(std::uint32_t p, std::span<const Vec2> uvs, GridSamplesView out)> evaluate_samples;
   /// One point of piece p.
   std::function<Vec3(std::uint32_t p, double u, double v)> evaluate;
   /// The pieces' control nets, when the pieces are whole Bezier patches (the camera mode needs

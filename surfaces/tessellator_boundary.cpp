@@ -176,13 +176,13 @@ void Tessellator::evaluate_sides(std::uint32_t p, const PatternRates& r, PatchOu
   out.positions.resize(count);
   out.normals.resize(count);
   if (options_.tangents) out.tangents.resize(count);
-  if (pieces_.evaluate_points) {
+  if (pieces_.evaluate_samples) {
     // The boundary points' (u, v) are the sides' parameters (make_pattern_boundary takes them
     // from edge_step_parameter, as the grids below): all of them in one call.
     thread_local std::vector<Vec2> uvs;
     uvs.resize(count);
     for (std::size_t k = 0; k < count; ++k) uvs[k] = out.pattern.points[k].uv;
-    pieces_.evaluate_points(p, uvs, {out.positions, out.normals, out.tangents});
+    pieces_.evaluate_samples(p, uvs, {out.positions, out.normals, out.tangents});
     return;
   }
   // Each thread's buffers keep their storage from side to side.

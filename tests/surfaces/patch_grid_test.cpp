@@ -98,9 +98,9 @@ RC_GTEST_PROP(PatchGrid, PointListMatchesTheGridSamples, ()) {
   std::vector<Vec4> with(tangents ? uvs.size() : 0), grid_tangents(tangents ? 1 : 0);
   try {
     if (rational) {
-      evaluate_points(homogeneous, uvs, {points, normals, with});
+      evaluate_samples(homogeneous, uvs, {points, normals, with});
     } else {
-      evaluate_points(patch, uvs, {points, normals, with});
+      evaluate_samples(patch, uvs, {points, normals, with});
     }
   } catch (const NumericalError&) {
     RC_DISCARD("a point without a normal (generated nets can be degenerate)");
@@ -135,16 +135,16 @@ TEST(PatchGrid, PointListGetsTheLimitNormalAndRefusesBadInput) {
                                                     {Vec3(0, 0, 0), Vec3(0.5, 0.5, 0), Vec3(1, 1, 1)});
   const std::vector<Vec2> uvs = {Vec2(0, 0), Vec2(0.25, 0), Vec2(1, 0), Vec2(0.5, 0.5)};
   std::vector<Vec3> points(uvs.size()), normals(uvs.size());
-  evaluate_points(patch, uvs, {points, normals, {}});
+  evaluate_samples(patch, uvs, {points, normals, {}});
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_LT((normals[k] - Vec3(0, 0, -1)).norm(), 1e-12);
     EXPECT_LT(points[k].norm(), 1e-15);
   }
   EXPECT_LT((points[3] - patch.evaluate(0.5, 0.5)).norm(), 1e-15);
   std::vector<Vec3> short_points(2), short_normals(2);
-  EXPECT_THROW(evaluate_points(patch, uvs, {short_points, short_normals, {}}), InvalidInput);
+  EXPECT_THROW(evaluate_samples(patch, uvs, {short_points, short_normals, {}}), InvalidInput);
   const std::vector<Vec2> bad = {Vec2(0.5, std::nan(""))};
-  EXPECT_THROW(evaluate_points(patch, bad, {points, normals, {}}), InvalidInput);
+  EXPECT_THROW(evaluate_samples(patch, bad, {points, normals, {}}), InvalidInput);
 }
 
 // The Bernstein values and derivatives of the point evaluators against the curves module's.
