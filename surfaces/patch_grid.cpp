@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "core/errors.h"
 #include "core/streaming_store.h"
@@ -300,7 +302,8 @@ void check_grid_output(int n, int m, const PatchGridWeights& weights, const Grid
                                ") for a patch of degrees (", n, ", ", m, ")"));
   }
   const std::size_t count = weights.us().size() * weights.vs().size();
-  if (out.points.size() < count || out.normals.size() < count || (!out.tangents.empty() && out.tangents.size() < count)) {
+  if (out.points.size() < count || out.normals.size() < count ||
+      (!out.tangents.empty() && out.tangents.size() < count)) {
     throw InvalidInput(message("evaluate_grid: room for ", std::min(out.points.size(), out.normals.size()),
                                " samples, the grid has ", count));
   }
@@ -390,9 +393,24 @@ struct CoordinateNet {
   double c[D][N + 1][M + 1];
 };
 
+// A point from its coordinates h (for D = 4 homogeneous: divided by w).
+template <int D>
+[[gnu::always_inline]] inline void store_point(const double (&h)[D], double* x, double* y, double* z) {
+  if constexpr (D == 4) {
+    *x = h[0] / h[3];
+    *y = h[1] / h[3];
+    *z = h[2] / h[3];
+  } else {
+    *x = h[0];
+    *y = h[1];
+    *z = h[2];
+  }
+}
+
 // F at `count` points (us[a], vs[a]) into coordinate arrays: Q_i = sum_j B_j^M(v) P_ij, then
 // F = sum_i B_i^N(u) Q_i (with D = 4, divided by w), the sums of evaluate_grid in its order.
-// Nothing in the loop branches, so the compiler vectorises it across points.
+// Everything is unrolled (at most 4 x 4 x 4 terms) and nothing in the loop branches, so the
+// compiler vectorises it across points.
 template <int N, int M, int D>
 [[gnu::always_inline]] inline void points_body(std::size_t count, const double* __restrict us,
                                                const double* __restrict vs, const CoordinateNet<N, M, D>& net,
@@ -402,7 +420,6 @@ template <int N, int M, int D>
     double bv[M + 1];
     bernstein_values<N>(us[a], bu);
     bernstein_values<M>(vs[a], bv);
-    // Fully unrolled (at most 4 x 4 x 4 terms), so the loop over points is the only loop.
     double h[D] = {};
 #pragma GCC unroll 4
     for (int i = 0; i <= N; ++i) {
@@ -415,22 +432,51 @@ template <int N, int M, int D>
 #pragma GCC unroll 4
       for (int c = 0; c < D; ++c) h[c] += bu[i] * q[c];
     }
-    if constexpr (D == 4) {
-      x[a] = h[0] / h[3];
-      y[a] = h[1] / h[3];
-      z[a] = h[2] / h[3];
-    } else {
-      x[a] = h[0];
-      y[a] = h[1];
-      z[a] = h[2];
-    }
+    store_point<D>(h, x + a, y + a, z + a);
   }
 }
 
+// The same on a row, every point at v: the net contracted in v once (the same sums, so the
+// same bits), then per point only the sum over i.
+template <int N, int M, int D>
+[[gnu::always_inline]] inline void row_body(std::size_t count, const double* __restrict us, double v,
+                                            const CoordinateNet<N, M, D>& net, double* __restrict x,
+                                            double* __restrict y, double* __restrict z) {
+  double bv[M + 1];
+  bernstein_values<M>(v, bv);
+  double q[D][N + 1];
+  for (int i = 0; i <= N; ++i) {
+    double sum[D] = {};
+    for (int j = 0; j <= M; ++j) {
+      for (int c = 0; c < D; ++c) sum[c] += bv[j] * net.c[c][i][j];
+    }
+    for (int c = 0; c < D; ++c) q[c][i] = sum[c];
+  }
+  for (std::size_t a = 0; a < count; ++a) {
+    double bu[N + 1];
+    bernstein_values<N>(us[a], bu);
+    double h[D] = {};
+#pragma GCC unroll 4
+    for (int i = 0; i <= N; ++i) {
+#pragma GCC unroll 4
+      for (int c = 0; c < D; ++c) h[c] += bu[i] * q[c][i];
+    }
+    store_point<D>(h, x + a, y + a, z + a);
+  }
+}
+
+// Each body as a function of its own, portable and for AVX2 (with both loops in one function,
+// GCC 12 left the scattered one scalar).
 template <int N, int M, int D>
 void points_portable(std::size_t count, const double* us, const double* vs, const CoordinateNet<N, M, D>& net,
                      double* x, double* y, double* z) {
   points_body<N, M, D>(count, us, vs, net, x, y, z);
+}
+
+template <int N, int M, int D>
+void row_portable(std::size_t count, const double* us, double v, const CoordinateNet<N, M, D>& net, double* x,
+                  double* y, double* z) {
+  row_body<N, M, D>(count, us, v, net, x, y, z);
 }
 
 #ifdef PATCHWORK_GRID_AVX2
@@ -438,6 +484,12 @@ template <int N, int M, int D>
 [[gnu::target("avx2")]] void points_avx2(std::size_t count, const double* us, const double* vs,
                                          const CoordinateNet<N, M, D>& net, double* x, double* y, double* z) {
   points_body<N, M, D>(count, us, vs, net, x, y, z);
+}
+
+template <int N, int M, int D>
+[[gnu::target("avx2")]] void row_avx2(std::size_t count, const double* us, double v, const CoordinateNet<N, M, D>& net,
+                                      double* x, double* y, double* z) {
+  row_body<N, M, D>(count, us, v, net, x, y, z);
 }
 #endif
 
@@ -459,16 +511,30 @@ void evaluate_points_fixed(const BezierPatch<Dim>& patch, std::span<const double
   std::array<double, chunk> z;
   for (std::size_t first = 0; first < us.size(); first += chunk) {
     const std::size_t count = std::min(chunk, us.size() - first);
+    const double* u = us.data() + first;
+    const double* v = vs.data() + first;
+    // A chunk on one row of v (the meter's inner cells come a row at a time) takes the row body.
+    const bool one_row = std::all_of(
+        v, v + count, [&](double t) { return std::bit_cast<std::uint64_t>(t) == std::bit_cast<std::uint64_t>(v[0]); });
+    bool done = false;
 #ifdef PATCHWORK_GRID_AVX2
     if (allow_avx2 && has_avx2()) {
-      points_avx2<N, M, D>(count, us.data() + first, vs.data() + first, net, x.data(), y.data(), z.data());
-    } else {
-      points_portable<N, M, D>(count, us.data() + first, vs.data() + first, net, x.data(), y.data(), z.data());
+      if (one_row) {
+        row_avx2<N, M, D>(count, u, v[0], net, x.data(), y.data(), z.data());
+      } else {
+        points_avx2<N, M, D>(count, u, v, net, x.data(), y.data(), z.data());
+      }
+      done = true;
     }
 #else
     static_cast<void>(allow_avx2);
-    points_portable<N, M, D>(count, us.data() + first, vs.data() + first, net, x.data(), y.data(), z.data());
 #endif
+    if (done) {
+    } else if (one_row) {
+      row_portable<N, M, D>(count, u, v[0], net, x.data(), y.data(), z.data());
+    } else {
+      points_portable<N, M, D>(count, u, v, net, x.data(), y.data(), z.data());
+    }
     interleave(count, x.data(), y.data(), z.data(), points[first].data());
   }
 }

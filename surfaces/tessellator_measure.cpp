@@ -22,20 +22,21 @@
 //   - the centroid and the three inner points belong to one triangle each.
 //
 // Cost model. A pattern of T triangles has about T/2 points and 3T/2 edges, so a piece costs
-// about 4 + 1.5 = 5.5 evaluations a triangle, plus one per welded boundary point (10 a triangle
-// before); an inner cell (two triangles) takes 11. An evaluation is a position only
-// (evaluate_points: Bernstein values of u and v and the tensor sum, vectorised across points, no
-// derivatives or normals), in batches of 256 samples per piece with no allocation; the rest is
-// L (three weighted corners) and a squared distance per sample. At large rates the meter costs
-// about 5.5 point evaluations a triangle against the tessellation's half a point with its
-// normal.
+// about 4 + 1.5 = 5.5 evaluations a triangle, plus one per welded boundary point (10 before);
+// an inner cell (two triangles) takes 11 (42 before, with normals). An evaluation is a position
+// only (evaluate_points: no derivatives, no normals), vectorised across points, in batches of 256
+// samples per piece with no allocation. The inner cells go a row of samples at a time (all on one
+// v), and where rows are long (16 cells or more) each row is one batch, for which
+// evaluate_points contracts the net in v once: a sample then costs the Bernstein values of u and
+// n + 1 terms. Besides S, a sample costs its L (three weighted corners) and a squared distance.
+
+#include "surfaces/tessellator_stages.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "core/parallel.h"
-#include "surfaces/tessellator_stages.h"
 
 namespace patchwork::detail {
 namespace {
@@ -50,20 +51,20 @@ class SampleBatch {
  public:
   SampleBatch(const SurfacePieces& pieces, std::uint32_t p) : pieces_(pieces), p_(p) {}
 
-  void add(const Vec2& uv, const Vec3& linear) {
-    us_[count_] = uv.x();
-    vs_[count_] = uv.y();
+  void add(double u, double v, const Vec3& linear) {
+    us_[count_] = u;
+    vs_[count_] = v;
     linear_[count_] = linear;
-    if (++count_ == capacity) flush();
+    if (++count_ == capacity) evaluate();
   }
 
   double largest() {
-    flush();
+    evaluate();
     return std::sqrt(largest_);
   }
 
- private:
-  void flush() {
+  // Evaluates the samples waiting (a row of samples on one v goes to evaluate_points' row loop).
+  void evaluate() {
     if (count_ == 0) return;
     if (pieces_.evaluate_points) {
       pieces_.evaluate_points(p_, {us_.data(), count_}, {vs_.data(), count_}, {surface_.data(), count_});
@@ -74,6 +75,7 @@ class SampleBatch {
     count_ = 0;
   }
 
+ private:
   static constexpr std::size_t capacity = 256;
   const SurfacePieces& pieces_;
   std::uint32_t p_;
@@ -108,9 +110,35 @@ void sample_triangle(const Triangle& t, const std::array<Vec2, 3>& uv, const std
       s += samples[k][c] * uv[c];
       linear += samples[k][c] * x[c];
     }
-    batch.add(s, linear);
+    batch.add(s.x(), s.y(), linear);
   }
 }
+
+// The samples of an inner cell row by row: at sixths (a, b) of the cell, in its upper triangle
+// or its lower one, sample k of measure_sample_weights there. They are what sample_triangle takes
+// from the cell's two triangles: every inner point and centroid, the lower triangle's bottom and
+// right midpoints and the upper's diagonal one (the top and left midpoints are the next cells',
+// or boundary triangles').
+//   cell (i, j):  (i, j+1) ---- (i+1, j+1)     lower triangle (i, j), (i+1, j), (i+1, j+1)
+//                    |  upper  /  |             upper triangle (i, j), (i+1, j+1), (i, j+1)
+//                    |      /     |             the sample of weights w lies at
+//                 (i, j) ---- (i+1, j)            lower: (6 (w1 + w2), 6 w2), upper: (6 w1, 6 (w1 + w2))
+struct CellSample {
+  std::size_t a;
+  bool upper;
+  std::size_t k;
+};
+// clang-format off
+constexpr std::array<CellSample, 11> cell_samples = {{
+    {3, false, 3},                 // b = 0: the bottom midpoint
+    {2, false, 7}, {5, false, 8},  // b = 1
+    {1, true, 7},  {4, false, 6},  // b = 2
+    {3, true, 3},  {6, false, 4},  // b = 3: the diagonal and right midpoints
+    {2, true, 6},  {5, false, 9},  // b = 4
+    {1, true, 9},  {4, true, 8}}}; // b = 5
+// clang-format on
+// Row b of the cell is cell_samples[cell_row_start[b] .. cell_row_start[b + 1]).
+constexpr std::array<std::size_t, 7> cell_row_start = {0, 1, 3, 5, 7, 9, 11};
 
 }  // namespace
 
@@ -123,7 +151,7 @@ double measured_piece_error(const SurfacePieces& pieces, std::uint32_t p, const 
   };
   // Corners: the boundary points whose position another piece (or a pole) gave.
   for (std::uint32_t k = 0; k < boundary; ++k) {
-    if (!out.owner[k]) batch.add(out.pattern.points[k].uv, position(k));
+    if (!out.owner[k]) batch.add(out.pattern.points[k].uv.x(), out.pattern.points[k].uv.y(), position(k));
   }
   for (const std::vector<Triangle>* triangles : {&out.kept, &out.dropped}) {
     for (const Triangle& t : *triangles) {
@@ -131,30 +159,36 @@ double measured_piece_error(const SurfacePieces& pieces, std::uint32_t p, const 
                       batch);
     }
   }
-  // The inner cells (make_pattern_boundary leaves them out), numbered as for_each_inner_triangle:
-  //   cell (i, j):  (i, j+1) ---- (i+1, j+1)     lower triangle (i, j), (i+1, j), (i+1, j+1)
-  //                    |  upper  /  |             upper triangle (i, j), (i+1, j+1), (i, j+1)
-  //                    |      /     |             each samples its inner points and centroid;
-  //                 (i, j) ---- (i+1, j)          the cell its bottom, right and diagonal midpoints
+  // The inner cells (make_pattern_boundary leaves them out), numbered as for_each_inner_triangle,
+  // a row of samples at a time (cell_samples); (u, v) on the sixths of the cells.
   const int nu = out.inner.u;
   const int nv = out.inner.v;
   if (nu > 2 && nv > 2) {
-    const auto row = static_cast<std::uint32_t>(nu - 1);
+    const auto cells = static_cast<std::uint32_t>(nu - 2);
+    const std::uint32_t row = cells + 1;
+    std::vector<double> us(6 * static_cast<std::size_t>(cells) + 1);
+    for (std::size_t k = 0; k < us.size(); ++k) us[k] = (1.0 + static_cast<double>(k) / 6.0) / nu;
+    // Long rows are evaluated a row at a time: the net is contracted in v once a row.
+    const bool by_rows = cells >= 16;
+    if (by_rows) batch.evaluate();
     for (int j = 1; j + 1 < nv; ++j) {
-      const double v0 = static_cast<double>(j) / nv;
-      const double v1 = static_cast<double>(j + 1) / nv;
-      double u0 = 1.0 / nu;
-      for (int i = 1; i + 1 < nu; ++i) {
-        const double u1 = static_cast<double>(i + 1) / nu;
-        const std::uint32_t q = static_cast<std::uint32_t>(i - 1) + row * static_cast<std::uint32_t>(j - 1);
-        const std::uint32_t a = boundary + q;
-        const Vec2 uv00(u0, v0);
-        const Vec2 uv11(u1, v1);
-        sample_triangle({a, a + 1, a + row + 1}, {uv00, Vec2(u1, v0), uv11},
-                        {interior[q], interior[q + 1], interior[q + row + 1]}, batch);
-        sample_triangle({a, a + row + 1, a + row}, {uv00, uv11, Vec2(u0, v1)},
-                        {interior[q], interior[q + row + 1], interior[q + row]}, batch);
-        u0 = u1;
+      for (std::size_t b = 0; b < 6; ++b) {
+        const double v = (j + static_cast<double>(b) / 6.0) / nv;
+        for (std::uint32_t i = 0; i < cells; ++i) {
+          const std::uint32_t q = i + row * static_cast<std::uint32_t>(j - 1);
+          for (std::size_t c = cell_row_start[b]; c < cell_row_start[b + 1]; ++c) {
+            const CellSample& sample = cell_samples[c];
+            const auto& w = samples[sample.k];
+            // The triangle's corners in its order: lower (i, j), (i+1, j), (i+1, j+1); upper
+            // (i, j), (i+1, j+1), (i, j+1).
+            Vec3 linear = Vec3::Zero();
+            linear += w[0] * interior[q];
+            linear += w[1] * interior[sample.upper ? q + row + 1 : q + 1];
+            linear += w[2] * interior[sample.upper ? q + row : q + row + 1];
+            batch.add(us[6 * i + sample.a], v, linear);
+          }
+        }
+        if (by_rows) batch.evaluate();
       }
     }
   }

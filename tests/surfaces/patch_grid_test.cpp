@@ -160,19 +160,35 @@ RC_GTEST_PROP(PatchGrid, PointsAreTheGridsPointsBitForBit, ()) {
     } catch (const NumericalError&) {
       continue;  // no normal somewhere (a point or a curve): the grid says no, not the points
     }
-    if (is_rational) {
-      evaluate_points(rational, us, vs, points);
-      detail::evaluate_points_portable(rational.homogeneous(), us, vs, portable);
-    } else {
-      evaluate_points(net, us, vs, points);
-      detail::evaluate_points_portable(net, us, vs, portable);
-    }
+    // The dispatched kernel or the portable one, of the polynomial or the rational patch.
+    const auto evaluate = [&](bool portable_kernel, const std::vector<double>& at_u, const std::vector<double>& at_v,
+                              std::vector<Vec3>& out) {
+      if (portable_kernel && is_rational) detail::evaluate_points_portable(rational.homogeneous(), at_u, at_v, out);
+      if (portable_kernel && !is_rational) detail::evaluate_points_portable(net, at_u, at_v, out);
+      if (!portable_kernel && is_rational) evaluate_points(rational, at_u, at_v, out);
+      if (!portable_kernel && !is_rational) evaluate_points(net, at_u, at_v, out);
+    };
+    evaluate(false, us, vs, points);
+    evaluate(true, us, vs, portable);
     RC_ASSERT(points == portable);
     for (std::size_t k = 0; k < points.size(); ++k) {
       RC_ASSERT(points[k] == grid_points[at[k]]);
       const Vec3 pointwise = is_rational ? rational.evaluate(us[k], vs[k]) : net.evaluate(us[k], vs[k]);
       RC_ASSERT((points[k] - pointwise).norm() <=
                 1e-13 * (testing::net_scale(net) + 1e-300) * (is_rational ? 25.0 : 1.0));
+    }
+    // Each grid row on its own, its u repeated: every v the same, so the kernel's row loop (the
+    // net contracted in v once) runs; the same bits again.
+    for (std::size_t b = 0; b < count_v; ++b) {
+      std::vector<double> row_us;
+      for (std::size_t r = 0; r < repeats; ++r) row_us.insert(row_us.end(), grid_us.begin(), grid_us.end());
+      const std::vector<double> row_vs(row_us.size(), grid_vs[b]);
+      std::vector<Vec3> row(row_us.size());
+      std::vector<Vec3> row_portable(row_us.size());
+      evaluate(false, row_us, row_vs, row);
+      evaluate(true, row_us, row_vs, row_portable);
+      RC_ASSERT(row == row_portable);
+      for (std::size_t k = 0; k < row.size(); ++k) RC_ASSERT(row[k] == grid_points[k % count_u + count_u * b]);
     }
   }
   std::vector<Vec3> too_few(us.size() - 1);
