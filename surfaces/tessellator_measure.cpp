@@ -35,6 +35,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "core/parallel.h"
 
@@ -140,6 +141,53 @@ constexpr std::array<CellSample, 11> cell_samples = {{
 // Row b of the cell is cell_samples[cell_row_start[b] .. cell_row_start[b + 1]).
 constexpr std::array<std::size_t, 7> cell_row_start = {0, 1, 3, 5, 7, 9, 11};
 
+// A row of inner cells: the u of their sixths (us[6 i + a] for cell i), the interior points and
+// the first cell's corner (i, j) among them, the points of a row, and the cells in the row.
+struct CellRow {
+  const double* us;
+  const Vec3* interior;
+  std::uint32_t first;
+  std::uint32_t row;
+  std::uint32_t cells;
+};
+
+// Sample C of cell_samples in the cell whose corner (i, j) is interior point q: L, its
+// triangle's corners weighted in the triangle's order, the weights known at compile time (a term
+// of weight 0 adds nothing but the sign of a zero).
+template <std::size_t C>
+[[gnu::always_inline]] inline Vec3 cell_linear(const Vec3* interior, std::uint32_t q, std::uint32_t row) {
+  constexpr CellSample sample = cell_samples[C];
+  constexpr std::array<double, 3> w = samples[sample.k];
+  // Lower triangle (i, j), (i+1, j), (i+1, j+1); upper (i, j), (i+1, j+1), (i, j+1).
+  const std::array<std::uint32_t, 3> corner = sample.upper ? std::array<std::uint32_t, 3>{q, q + row + 1, q + row}
+                                                           : std::array<std::uint32_t, 3>{q, q + 1, q + row + 1};
+  Vec3 linear = Vec3::Zero();
+  if constexpr (w[0] != 0.0) linear += w[0] * interior[corner[0]];
+  if constexpr (w[1] != 0.0) linear += w[1] * interior[corner[1]];
+  if constexpr (w[2] != 0.0) linear += w[2] * interior[corner[2]];
+  return linear;
+}
+
+// Samples From + S... of every cell of a row of cells, at v.
+template <std::size_t From, std::size_t... S>
+void add_cell_samples(const CellRow& cells, double v, SampleBatch& batch, std::index_sequence<S...>) {
+  for (std::uint32_t i = 0; i < cells.cells; ++i) {
+    const std::uint32_t q = cells.first + i;
+    (batch.add(cells.us[6 * i + cell_samples[From + S].a], v, cell_linear<From + S>(cells.interior, q, cells.row)),
+     ...);
+  }
+}
+
+// The samples of row B of every cell of a row of cells, at v.
+template <std::size_t B>
+void add_cell_row(const CellRow& cells, double v, SampleBatch& batch) {
+  constexpr std::size_t from = cell_row_start[B];
+  add_cell_samples<from>(cells, v, batch, std::make_index_sequence<cell_row_start[B + 1] - from>{});
+}
+
+constexpr std::array<void (*)(const CellRow&, double, SampleBatch&), 6> add_cell_rows = {
+    add_cell_row<0>, add_cell_row<1>, add_cell_row<2>, add_cell_row<3>, add_cell_row<4>, add_cell_row<5>};
+
 }  // namespace
 
 double measured_piece_error(const SurfacePieces& pieces, std::uint32_t p, const PatchOutput& out,
@@ -172,22 +220,11 @@ double measured_piece_error(const SurfacePieces& pieces, std::uint32_t p, const 
     const bool by_rows = cells >= 16;
     if (by_rows) batch.evaluate();
     for (int j = 1; j + 1 < nv; ++j) {
+      const std::uint32_t first = row * static_cast<std::uint32_t>(j - 1);
+      const CellRow cell_row{us.data(), interior.data(), first, row, cells};
       for (std::size_t b = 0; b < 6; ++b) {
         const double v = (j + static_cast<double>(b) / 6.0) / nv;
-        for (std::uint32_t i = 0; i < cells; ++i) {
-          const std::uint32_t q = i + row * static_cast<std::uint32_t>(j - 1);
-          for (std::size_t c = cell_row_start[b]; c < cell_row_start[b + 1]; ++c) {
-            const CellSample& sample = cell_samples[c];
-            const auto& w = samples[sample.k];
-            // The triangle's corners in its order: lower (i, j), (i+1, j), (i+1, j+1); upper
-            // (i, j), (i+1, j+1), (i, j+1).
-            Vec3 linear = Vec3::Zero();
-            linear += w[0] * interior[q];
-            linear += w[1] * interior[sample.upper ? q + row + 1 : q + 1];
-            linear += w[2] * interior[sample.upper ? q + row : q + row + 1];
-            batch.add(us[6 * i + sample.a], v, linear);
-          }
-        }
+        add_cell_rows[b](cell_row, v, batch);
         if (by_rows) batch.evaluate();
       }
     }
