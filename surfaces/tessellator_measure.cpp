@@ -18,7 +18,8 @@
 //     square is walked a -> b by one triangle and b -> a by the other: it is sampled by the one
 //     that walks it from the lower pattern index to the higher (inner cells and boundary
 //     triangles number their points alike), and an edge on the square's sides (no other
-//     triangle) always.
+//     triangle) always. (The inner cells take (u, v) on the sixths of a cell, as the fine grids
+//     of the first meter did: the same points but for rounding.)
 //   - the centroid and the three inner points belong to one triangle each.
 //
 // Cost model. A pattern of T triangles has about T/2 points and 3T/2 edges, so a piece costs
