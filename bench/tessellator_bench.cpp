@@ -157,6 +157,32 @@ BENCHMARK(teapot_uniform_throughput)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// The meter's cost beside the tessellation's: the teapot at the absolute tolerance 0.0082 (about
+// 1e-3 of its box diagonal) on one thread into a reused Tessellation, with the measured error
+// (range(0) = 1) and without it (0). Every iteration times both parts (Tessellation's
+// tessellation_seconds and measure_seconds), so the ratio comes from the same runs.
+void teapot_measure(benchmark::State& state) {
+  TessellationOptions options;
+  options.tolerance = 0.0082;
+  options.threads = 1;
+  options.measure = state.range(0) == 1;
+  Tessellation result;
+  double tessellation = 0.0;
+  double measure = 0.0;
+  for (auto _ : state) {
+    tessellate(teapot(), options, result);
+    tessellation += result.tessellation_seconds;
+    measure += result.measure_seconds;
+    benchmark::DoNotOptimize(result.measured_error);
+  }
+  const auto iterations = static_cast<double>(state.iterations());
+  state.counters["tessellation_ms"] = 1e3 * tessellation / iterations;
+  state.counters["measure_ms"] = 1e3 * measure / iterations;
+  state.counters["measure/tessellation"] = measure / tessellation;
+  state.counters["triangles"] = static_cast<double>(result.mesh.triangle_count());
+}
+BENCHMARK(teapot_measure)->ArgName("measure")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // The smallest per-patch grid (fewest cells) whose sampled distance meets eps: what the a-priori
 // rates are compared with.
 std::int64_t reference_triangles(double eps) {

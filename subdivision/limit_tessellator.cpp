@@ -94,6 +94,13 @@ LimitPieces limit_pieces(const LimitSurface& surface) {
     const Vec2 uv = face_parameters(triangles, s, t);
     return surface.position(faces[p], uv.x(), uv.y());
   };
+  pieces.evaluate_points = [&surface, faces, triangles](std::uint32_t p, std::span<const double> us,
+                                                        std::span<const double> vs, std::span<Vec3> points) {
+    for (std::size_t k = 0; k < us.size(); ++k) {
+      const Vec2 uv = face_parameters(triangles, us[k], vs[k]);
+      points[k] = surface.position(faces[p], uv.x(), uv.y());
+    }
+  };
   pieces.evaluate_grid = [&surface, faces, triangles](std::uint32_t p, std::span<const double> us,
                                                       std::span<const double> vs, GridSamplesView out) {
     std::size_t index = 0;

@@ -186,6 +186,32 @@ void store_sample(const Patch& patch, double u, double v, const Vec3& point, con
 void evaluate_grid_portable(const BezierPatch3& patch, const PatchGridWeights& weights, GridSamplesView out);
 }  // namespace detail
 
+/// F alone at scattered points: points[k] = F(us[k], vs[k]) for every k (no derivatives, no
+/// normals; what the tessellator's meter samples). Per point the Bernstein values of u and v
+/// come from bernstein_all's recursion, the net is contracted in v (Q_i = sum_j B_j^m(v) P_ij)
+/// and F = sum_i B_i^n(u) Q_i: the sums of evaluate_grid in its order, so a point equals
+/// evaluate_grid's point at the same parameters bit for bit. Degrees 1-3 run a kernel that
+/// vectorises across points (AVX2 where the processor has it, without FMA: the same bits).
+/// Parameters are not checked (those outside [0,1] extrapolate).
+/// \throws InvalidInput if us and vs differ in length or points is shorter.
+void evaluate_points(const BezierPatch3& patch, std::span<const double> us, std::span<const double> vs,
+                     std::span<Vec3> points);
+
+/// evaluate_points for a rational patch: F = H / w from the homogeneous net H, contracted as
+/// above (evaluate_grid(RationalBezierPatch, ...)'s point bit for bit).
+/// \throws InvalidInput as evaluate_points(BezierPatch3, ...) does.
+void evaluate_points(const RationalBezierPatch& patch, std::span<const double> us, std::span<const double> vs,
+                     std::span<Vec3> points);
+
+namespace detail {
+/// evaluate_points without the instruction-set dispatch, of a polynomial net (Dim = 3) or of a
+/// rational patch's homogeneous net (Dim = 4: F = H / w): the reference the dispatched kernel
+/// must match bit for bit (tests). Instantiated for 3 and 4.
+template <int Dim>
+void evaluate_points_portable(const BezierPatch<Dim>& net, std::span<const double> us, std::span<const double> vs,
+                              std::span<Vec3> points);
+}  // namespace detail
+
 /// F and the unit normal at every grid point (the limit normal where F_u x F_v vanishes), and the
 /// unit tangents if `with_tangents`.
 /// \throws InvalidInput if the weights' degrees differ from the patch's.

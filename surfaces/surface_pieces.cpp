@@ -137,6 +137,14 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     const RationalBezierPatch* rational = set.rational(patch);
     return rational != nullptr ? rational->evaluate(u, v) : evaluate_point(set.control_nets()[patch], u, v);
   };
+  const auto points_of = [&set](std::uint32_t patch, std::span<const double> us, std::span<const double> vs,
+                                std::span<Vec3> points) {
+    if (const RationalBezierPatch* rational = set.rational(patch)) {
+      evaluate_points(*rational, us, vs, points);
+    } else {
+      evaluate_points(set.control_nets()[patch], us, vs, points);
+    }
+  };
   if (k == 1) {
     pieces.count = patches.size();
     pieces.patches = &patches;
@@ -153,6 +161,7 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
     pieces.evaluate_grid = grid_of;
     pieces.evaluate_samples = points_of;
     pieces.evaluate = point_of;
+    pieces.evaluate_points = points_of;
     return pieces;
   }
   // Piece (a, b) of patch p is number p k^2 + a + k b.
@@ -229,6 +238,21 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
   pieces.evaluate = [point_of, domains](std::uint32_t q, double u, double v) {
     const SurfacePieces::Domain& d = domains[q];
     return point_of(d.patch, d.u0 + d.size * u, d.v0 + d.size * v);
+  };
+  // The parameters mapped as evaluate_grid maps them, a chunk at a time on the stack.
+  pieces.evaluate_points = [points_of, domains](std::uint32_t q, std::span<const double> us, std::span<const double> vs,
+                                                std::span<Vec3> points) {
+    const SurfacePieces::Domain& d = domains[q];
+    std::array<double, 256> patch_us;
+    std::array<double, 256> patch_vs;
+    for (std::size_t first = 0; first < us.size(); first += patch_us.size()) {
+      const std::size_t count = std::min(patch_us.size(), us.size() - first);
+      for (std::size_t k = 0; k < count; ++k) {
+        patch_us[k] = d.u0 + d.size * us[first + k];
+        patch_vs[k] = d.v0 + d.size * vs[first + k];
+      }
+      points_of(d.patch, {patch_us.data(), count}, {patch_vs.data(), count}, points.subspan(first, count));
+    }
   };
   return pieces;
 }

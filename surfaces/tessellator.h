@@ -209,6 +209,10 @@ struct SurfacePieces {
   std::function<void(std::uint32_t p, std::span<const Vec2> uvs, GridSamplesView out)> evaluate_samples;
   /// One point of piece p.
   std::function<Vec3(std::uint32_t p, double u, double v)> evaluate;
+  /// Piece p at the points (us[k], vs[k]) into points[k]: positions only, many at a time (the
+  /// measured error samples with it). Empty: the meter calls `evaluate` point by point.
+  std::function<void(std::uint32_t p, std::span<const double> us, std::span<const double> vs, std::span<Vec3> points)>
+      evaluate_points;
   /// The pieces' control nets, when the pieces are whole Bezier patches (the camera mode needs
   /// them; else null): each piece lies in the convex hull of its net; where `rational` says
   /// so, the piece is the rational patch of that net and its weights, else the net itself.

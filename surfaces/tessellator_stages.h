@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "core/assert.h"
@@ -293,6 +294,19 @@ inline bool is_grid_cell_half(const Vec2& a, const Vec2& b, const Vec2& c, doubl
 double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeBounds& bounds, int nu, int nv,
                      double cell, const std::function<Vec3(const Vec2&)>& surface, double tolerance);
 
+// --- tessellator_measure.cpp: the measured error ---------------------------------------------
+
+/// The measured error of tessellated piece p: the largest |S(u, v) - L(u, v)| over the
+/// measure_sample_weights of every triangle of its pattern (out.kept, out.dropped and the inner
+/// cells), S from pieces.evaluate_points (pieces.evaluate where that is empty), L interpolating
+/// the positions of the triangle's corners: welded_positions[out.welded[k]] for boundary point k,
+/// interior[q] for interior point q (the piece's interior mesh positions, row by row, as
+/// assembled). Samples that are the same point of two triangles are evaluated once, and corners
+/// whose mesh position is the piece's own surface point are not evaluated (their distance is
+/// zero but for rounding); see tessellator_measure.cpp.
+double measured_piece_error(const SurfacePieces& pieces, std::uint32_t p, const PatchOutput& out,
+                            std::span<const Vec3> welded_positions, std::span<const Vec3> interior);
+
 class Tessellator {
  public:
   // `planned`: the grid of every piece at the options' tolerance, when the caller has found them
@@ -381,21 +395,8 @@ class Tessellator {
 
   // --- measurement --------------------------------------------------------------------------
 
-  static constexpr const auto& samples = measure_sample_weights;
-
-  // The sampled error over the inner cells of patch p (make_pattern_boundary leaves them out).
-  // Their samples fall on a grid of sixths of a cell (every sample weight is a multiple of 1/6),
-  // so each row of cells is evaluated as one grid, 7 fine rows by 6 fine columns a cell, with
-  // the grid kernel instead of point by point (ten times faster at large rates).
-  //   cell (i, j):  (i, j+1) ---- (i+1, j+1)     lower triangle (i, j), (i+1, j), (i+1, j+1)
-  //                    |  upper  /  |             upper triangle (i, j), (i+1, j+1), (i, j+1)
-  //                    |      /     |             sample (a, b) in sixths of the cell
-  //                 (i, j) ---- (i+1, j)
-  template <class Position>
-  double inner_cells_error(std::uint32_t p, const PatchOutput& out, const Position& position) const;
-
   // e_par: |S(u,v) - L(u,v)| at the samples of every parameter triangle, L the linear
-  // interpolant of the mesh positions.
+  // interpolant of the mesh positions: the largest measured_piece_error, pieces in parallel.
   double measure(const RenderMesh& mesh) const;
 
   // Triangles reordered for the vertex cache, in one call over the whole mesh (a call per piece

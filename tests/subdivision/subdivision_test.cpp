@@ -21,6 +21,7 @@
 #include "tests/meshes/face_lists.h"
 #include "tests/support/ray_cast.h"
 #include "tests/meshes/mesh_generators.h"
+#include "tests/surfaces/measured_error_reference.h"
 
 namespace patchwork {
 namespace {
@@ -769,6 +770,36 @@ TEST(LimitTessellation, LoopAndBilinearInSegmentsMode) {
   expect_closed_sphere(box);
   EXPECT_EQ(box.error_bound, 0.0);
   EXPECT_LT(box.measured_error, 1e-15);
+}
+
+// The measured error of limit pieces against the reference (tests/surfaces/
+// measured_error_reference.h: every sample of every triangle, point by point with the limit
+// surface's position): Catmull-Clark at a tolerance and in segments, Loop in segments (its
+// triangles' collapsed sides drop triangles, which are sampled too). Each piece agrees to rounding.
+TEST(LimitTessellation, MeasuredErrorMatchesThePointwiseReference) {
+  const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                    {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const FaceList faces = {{0, 3, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  const LimitSurface catmull_clark(cage_of(make_mesh(points, faces)));
+  const LimitSurface loop(cage_of(icosahedron(), SubdivisionScheme::loop));
+  TessellationOptions tolerance;
+  tolerance.relative_tolerance = 1e-3;
+  TessellationOptions segments;
+  segments.segments = 5;
+  for (const auto& [surface, options] :
+       {std::pair{&catmull_clark, tolerance}, std::pair{&catmull_clark, segments}, std::pair{&loop, segments}}) {
+    const LimitPieces pieces = limit_pieces(*surface);
+    const testing::MeasuredErrorComparison c =
+        testing::compare_measured_error(pieces.pieces, options, pieces.pieces.evaluate);
+    const double rounding = 1e-13 * c.scale;
+    double reference = 0.0;
+    for (std::size_t p = 0; p < c.meter.size(); ++p) {
+      EXPECT_NEAR(c.meter[p], c.reference[p], rounding) << "piece " << p;
+      reference = std::max(reference, c.reference[p]);
+    }
+    EXPECT_GT(reference, 0.0);
+    EXPECT_NEAR(c.measured_error, reference, rounding);
+  }
 }
 
 }  // namespace

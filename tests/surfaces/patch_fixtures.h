@@ -4,8 +4,10 @@
 #include <rapidcheck.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "surfaces/bezier_patch.h"
@@ -84,9 +86,26 @@ inline double net_scale(const BezierPatch3& patch) {
 inline BezierPatch3 wavy_bicubic() {
   std::vector<Vec3> points;
   for (int j = 0; j <= 3; ++j) {
-    for (int i = 0; i <= 3; ++i) points.emplace_back(i / 3.0, j / 3.0, 0.3 * std::sin(1.7 * i + 0.9 * j) - 0.1 * i * j / 9.0);
+    for (int i = 0; i <= 3; ++i)
+      points.emplace_back(i / 3.0, j / 3.0, 0.3 * std::sin(1.7 * i + 0.9 * j) - 0.1 * i * j / 9.0);
   }
   return BezierPatch3(3, 3, std::move(points));
+}
+
+/// Two biquadratic height fields side by side, [0,1] x [0,1] and [1,2] x [0,1]: the right one
+/// continues the left across x = 1, its u0 column on the left's u1 column, then each point j of
+/// that column moved by move(j) (a gap that a PatchSet of enough tolerance still joins).
+inline std::array<BezierPatch3, 2> height_fields_side_by_side(const std::function<Vec3(int)>& move) {
+  const double heights[3][3] = {{0.0, 0.3, 0.1}, {0.4, -0.2, 0.2}, {0.1, 0.3, 0.0}};
+  std::vector<Vec3> left;
+  for (int j = 0; j <= 2; ++j) {
+    for (int i = 0; i <= 2; ++i) left.emplace_back(0.5 * i, 0.5 * j, heights[j][i]);
+  }
+  std::vector<Vec3> right;
+  for (int j = 0; j <= 2; ++j) {
+    for (int i = 0; i <= 2; ++i) right.push_back(i == 0 ? left[2 + 3 * j] + move(j) : left[i + 3 * j] + Vec3(1, 0, 0));
+  }
+  return {BezierPatch3(2, 2, left), BezierPatch3(2, 2, right)};
 }
 
 /// The same surface with its parameter square turned by 180 degrees ((u, v) -> (1 - u, 1 - v)):

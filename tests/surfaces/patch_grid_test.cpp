@@ -49,6 +49,13 @@ void check_against_pointwise(const BezierPatch3& patch, const PatchGridWeights& 
   }
 }
 
+// `count` parameters in [0, 1], multiples of 1/1000 (repeats and the ends come up often).
+std::vector<double> random_parameters(std::size_t count) {
+  std::vector<double> ts(count);
+  for (double& t : ts) t = *rc::gen::inRange(0, 1001) / 1000.0;
+  return ts;
+}
+
 RC_GTEST_PROP(PatchGrid, MatchesPointwiseEvaluation, ()) {
   const BezierPatch3 patch = *testing::random_patch(1, 5);
   const auto segments_u = static_cast<std::size_t>(*rc::gen::inRange(1, 9));
@@ -176,10 +183,8 @@ RC_GTEST_PROP(PatchGrid, EveryInstructionSetGivesTheSameBits, ()) {
   const BezierPatch3 patch = *testing::random_patch(1, 3);
   const auto count_u = static_cast<std::size_t>(*rc::gen::inRange(1, 40));
   const auto count_v = static_cast<std::size_t>(*rc::gen::inRange(1, 4));
-  std::vector<double> us(count_u);
-  std::vector<double> vs(count_v);
-  for (double& u : us) u = *rc::gen::inRange(0, 1001) / 1000.0;
-  for (double& v : vs) v = *rc::gen::inRange(0, 1001) / 1000.0;
+  const std::vector<double> us = random_parameters(count_u);
+  const std::vector<double> vs = random_parameters(count_v);
   const PatchGridWeights weights(patch.degree_u(), patch.degree_v(), us, vs);
   std::vector<Vec3> points(count_u * count_v), normals(points.size());
   std::vector<Vec3> portable_points(points.size()), portable_normals(points.size());
@@ -199,6 +204,83 @@ RC_GTEST_PROP(PatchGrid, EveryInstructionSetGivesTheSameBits, ()) {
   evaluate_grid(patch, weights, {streamed_points, streamed_normals, {}, true});
   RC_ASSERT(streamed_points == points);
   RC_ASSERT(streamed_normals == normals);
+}
+
+// evaluate_points (F alone at scattered points) gives evaluate_grid's points bit for bit (the
+// same Bernstein values and sums; the grid has at least two columns, so the row kernel or the
+// generic loop, never the column kernel, which sums in the other order), polynomial and
+// rational, every degree from 0 to 5, with and without AVX2; and the pointwise patch to rounding.
+RC_GTEST_PROP(PatchGrid, PointsAreTheGridsPointsBitForBit, ()) {
+  const BezierPatch3 net = *testing::random_patch(0, 5);
+  std::vector<double> weights;
+  for (std::size_t k = 0; k < net.control_points().size(); ++k) weights.push_back(*testing::coordinate(0.2, 5.0));
+  const RationalBezierPatch rational(net.degree_u(), net.degree_v(), net.control_points(), weights);
+  const auto count_u = static_cast<std::size_t>(*rc::gen::inRange(2, 12));
+  const auto count_v = static_cast<std::size_t>(*rc::gen::inRange(1, 5));
+  const std::vector<double> grid_us = random_parameters(count_u);
+  const std::vector<double> grid_vs = random_parameters(count_v);
+  const PatchGridWeights grid(net.degree_u(), net.degree_v(), grid_us, grid_vs);
+  // The grid's points in some order as scattered points (more than a chunk of the kernel).
+  std::vector<double> us;
+  std::vector<double> vs;
+  std::vector<std::size_t> at;
+  const auto repeats = static_cast<std::size_t>(*rc::gen::inRange(1, 12));
+  for (std::size_t r = 0; r < repeats; ++r) {
+    for (std::size_t k = 0; k < count_u * count_v; ++k) {
+      const std::size_t s = (k * 7 + r) % (count_u * count_v);
+      us.push_back(grid_us[s % count_u]);
+      vs.push_back(grid_vs[s / count_u]);
+      at.push_back(s);
+    }
+  }
+  std::vector<Vec3> points(us.size());
+  std::vector<Vec3> portable(us.size());
+  for (const bool is_rational : {false, true}) {
+    std::vector<Vec3> grid_points(count_u * count_v);
+    std::vector<Vec3> grid_normals(grid_points.size());
+    try {
+      if (is_rational) {
+        evaluate_grid(rational, grid, {grid_points, grid_normals, {}});
+      } else {
+        evaluate_grid(net, grid, {grid_points, grid_normals, {}});
+      }
+    } catch (const NumericalError&) {
+      continue;  // no normal somewhere (a point or a curve): the grid says no, not the points
+    }
+    // The dispatched kernel or the portable one, of the polynomial or the rational patch.
+    const auto evaluate = [&](bool portable_kernel, const std::vector<double>& at_u, const std::vector<double>& at_v,
+                              std::vector<Vec3>& out) {
+      if (portable_kernel && is_rational) detail::evaluate_points_portable(rational.homogeneous(), at_u, at_v, out);
+      if (portable_kernel && !is_rational) detail::evaluate_points_portable(net, at_u, at_v, out);
+      if (!portable_kernel && is_rational) evaluate_points(rational, at_u, at_v, out);
+      if (!portable_kernel && !is_rational) evaluate_points(net, at_u, at_v, out);
+    };
+    evaluate(false, us, vs, points);
+    evaluate(true, us, vs, portable);
+    RC_ASSERT(points == portable);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      RC_ASSERT(points[k] == grid_points[at[k]]);
+      const Vec3 pointwise = is_rational ? rational.evaluate(us[k], vs[k]) : net.evaluate(us[k], vs[k]);
+      RC_ASSERT((points[k] - pointwise).norm() <=
+                1e-13 * (testing::net_scale(net) + 1e-300) * (is_rational ? 25.0 : 1.0));
+    }
+    // Each grid row on its own, its u repeated: every v the same, so the kernel's row loop (the
+    // net contracted in v once) runs; the same bits again.
+    for (std::size_t b = 0; b < count_v; ++b) {
+      std::vector<double> row_us;
+      for (std::size_t r = 0; r < repeats; ++r) row_us.insert(row_us.end(), grid_us.begin(), grid_us.end());
+      const std::vector<double> row_vs(row_us.size(), grid_vs[b]);
+      std::vector<Vec3> row(row_us.size());
+      std::vector<Vec3> row_portable(row_us.size());
+      evaluate(false, row_us, row_vs, row);
+      evaluate(true, row_us, row_vs, row_portable);
+      RC_ASSERT(row == row_portable);
+      for (std::size_t k = 0; k < row.size(); ++k) RC_ASSERT(row[k] == grid_points[k % count_u + count_u * b]);
+    }
+  }
+  std::vector<Vec3> too_few(us.size() - 1);
+  RC_ASSERT_THROWS_AS(evaluate_points(net, us, vs, too_few), InvalidInput);
+  RC_ASSERT_THROWS_AS(evaluate_points(net, us, std::span<const double>(vs).first(vs.size() - 1), points), InvalidInput);
 }
 
 // A row on a collapsed edge has no F_u x F_v: its normals are the limit normals, redone after

@@ -416,26 +416,13 @@ TEST(Tessellator, CreasesSplitVerticesButStayWelded) {
 // are planned for the tolerance less the gap, so a gap below half the tolerance keeps the bound
 // within the tolerance; a larger one shows in it.
 TEST(Tessellator, WeldGapIsPartOfTheBound) {
-  // A biquadratic height field over [0,1]^2.
-  const double heights[3][3] = {{0.0, 0.3, 0.1}, {0.4, -0.2, 0.2}, {0.1, 0.3, 0.0}};
-  std::vector<Vec3> left_points;
-  for (int j = 0; j <= 2; ++j) {
-    for (int i = 0; i <= 2; ++i) left_points.emplace_back(0.5 * i, 0.5 * j, heights[j][i]);
-  }
-  const BezierPatch3 left(2, 2, left_points);
   TessellationOptions options;
   options.tolerance = 1e-5;
   for (const double delta : {2e-6, 2e-4}) {
-    // The right patch starts where `left` ends (its u0 edge on left's u1 edge), moved by delta in z.
-    std::vector<Vec3> right_points;
-    for (int j = 0; j <= left.degree_v(); ++j) {
-      for (int i = 0; i <= left.degree_u(); ++i) {
-        Vec3 q = left.control_point(i, j) + Vec3(1, 0, 0);
-        if (i == 0) q = left.control_point(left.degree_u(), j) + Vec3(0, 0, delta);
-        right_points.push_back(q);
-      }
-    }
-    const PatchSet set({left, BezierPatch3(2, 2, right_points)}, 1e-3);
+    // The right patch starts where the left one ends (its u0 edge on the left's u1 edge), moved
+    // by delta in z.
+    const auto [left, right] = testing::height_fields_side_by_side([delta](int) { return Vec3(0, 0, delta); });
+    const PatchSet set({left, right}, 1e-3);
     ASSERT_EQ(set.shared_edges().size(), 1u);
     const Tessellation result = tessellate(set, options);
     EXPECT_NEAR(result.weld_gap, delta, 1e-12);
@@ -449,6 +436,7 @@ TEST(Tessellator, WeldGapIsPartOfTheBound) {
     }
   }
   // Where the edges agree exactly there is nothing to add.
+  const BezierPatch3 left = testing::height_fields_side_by_side([](int) { return Vec3(0, 0, 0); })[0];
   const Tessellation exact = tessellate(PatchSet({left}), options);
   EXPECT_EQ(exact.weld_gap, 0.0);
 }
