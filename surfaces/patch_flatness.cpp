@@ -267,8 +267,14 @@ const MomentTable& lower_triangle_moments() {
 // peaks, so taking the maximum of the whole sum box by box recovers most of it.
 // Cloned for AVX2 (chosen at load time where the CPU has it): twice the doubles per
 // instruction in the boxes' loop, the same bits (no FMA: each product and sum rounds as in the
-// default clone, so the rates do not depend on the machine).
-[[gnu::target_clones("avx2", "default")]] double lower_triangle_bound(
+// default clone, and nothing is contracted, -ffp-contract=off in surfaces/CMakeLists.txt, so the
+// rates do not depend on the machine). x86-64 Linux only (ifunc).
+#if defined(__x86_64__) && defined(__linux__)
+#define PATCHWORK_AVX2_CLONES [[gnu::target_clones("avx2", "default")]]
+#else
+#define PATCHWORK_AVX2_CLONES
+#endif
+PATCHWORK_AVX2_CLONES double lower_triangle_bound(
     const DirectionalBounds& d, double du, double dv, double stop_above = std::numeric_limits<double>::infinity()) {
   const MomentTable& table = lower_triangle_moments();
   const std::array<double, 3> scale = {du * du, du * dv, dv * dv};

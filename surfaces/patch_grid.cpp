@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/assert.h"
 #include "core/errors.h"
 #include "core/streaming_store.h"
 #include "surfaces/surface_normal.h"
@@ -263,12 +264,28 @@ PatchGridWeights::PatchGridWeights(int n, int m, std::span<const double> us, std
 }
 
 void PatchGridWeights::assign(int n, int m, std::span<const double> us, std::span<const double> vs) {
+  // Every check before the first change; the lists copied through a scratch when they are this
+  // object's own (w.assign(k, l, w.us(), w.vs()) is a natural call).
   if (n < 0 || m < 0) throw InvalidInput(detail::message("PatchGridWeights: degrees (", n, ", ", m, ") are negative"));
   if (us.empty() || vs.empty()) throw InvalidInput("PatchGridWeights: empty parameter list");
+  for (const std::span<const double> list : {us, vs}) {
+    for (const double t : list) {
+      if (!std::isfinite(t)) throw InvalidInput(detail::message("PatchGridWeights: parameter ", t, " is not finite"));
+    }
+  }
+  const auto copy = [](std::span<const double> from, std::vector<double>& to) {
+    const bool inside = !to.empty() && from.data() >= to.data() && from.data() < to.data() + to.size();
+    if (!inside) {
+      to.assign(from.begin(), from.end());  // keeps the storage
+      return;
+    }
+    const std::vector<double> scratch(from.begin(), from.end());
+    to = scratch;
+  };
+  copy(us, us_);
+  copy(vs, vs_);
   n_ = n;
   m_ = m;
-  us_.assign(us.begin(), us.end());
-  vs_.assign(vs.begin(), vs.end());
   tabulate(n, us_, u_values_, u_derivatives_);
   tabulate(m, vs_, v_values_, v_derivatives_);
 }
@@ -344,6 +361,7 @@ void raise_bernstein_degree(int d, double t, double* values) {
 }  // namespace
 
 void bernstein_values_and_derivatives(int n, double t, double* values, double* derivatives) {
+  PATCHWORK_ASSERT(n >= 0, "a degree is not negative");
   // B_i^n' = n (B_{i-1}^{n-1} - B_i^{n-1}): the values of degree n-1 first, then both.
   values[0] = 1.0;
   for (int d = 1; d < n; ++d) raise_bernstein_degree(d, t, values);

@@ -98,9 +98,10 @@ void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& wei
 ///         (tangents: empty or at least as long).
 void evaluate_samples(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out);
 
-/// F(u, v) by the Bernstein sums sum_ij B_i^n(u) B_j^m(v) P_ij (nonnegative weights summing to
-/// 1 on [0,1]^2): the cheap form for many single points (a bound's samples) where
-/// BezierPatch::evaluate's de Casteljau costs some five times as much. \pre u, v finite.
+/// F(u, v) for many single points (a bound's samples): degrees 1-3 by the Bernstein sums
+/// sum_ij B_i^n(u) B_j^m(v) P_ij (nonnegative weights summing to 1 on [0,1]^2), where
+/// BezierPatch::evaluate's de Casteljau costs some five times as much; other degrees by
+/// BezierPatch::evaluate. \pre u, v finite.
 Vec3 evaluate_point(const BezierPatch3& patch, double u, double v);
 
 /// evaluate_samples for a rational patch (F = H / w, as its evaluate_grid).

@@ -12,17 +12,17 @@
 // The split pieces, the tight box and the solids are made on first use (a set tessellated only
 // at coarse tolerances never splits; only BackFaceCulling::automatic needs the solids).
 //
-// What a tessellation then costs is what its options change: the grid of every piece at the
-// tolerance (with a camera: each patch's tolerance and whether it is culled), the rates of the
-// shared edges and the stitched patterns, the evaluation into the output. A Tessellation passed
-// in again (tessellate(prepared, options, result)) also keeps the plan of its last run: a piece
-// whose tolerance did not change keeps its grid, and when no piece's tolerance or culling
-// changed, the whole plan (rates raised to the stitched bounds) is reused and only the
-// evaluation is done again.
+// What a tessellation then costs is what its options change: the split choice and the grid of
+// every piece at the tolerance (with a camera: each patch's tolerance and whether it is culled),
+// the rates of the shared edges and the stitched patterns, the evaluation into the output, the
+// vertex order. Nothing is kept from one tessellation for the next but the storage of the
+// Tessellation passed in again (tessellate(prepared, options, result)).
 //
-// A PreparedSurface refers to its PatchSet, which must outlive it. It is never changed by a
-// tessellation (what is made on first use is made once, under a lock): several threads may
-// tessellate one PreparedSurface at once, each into its own Tessellation.
+// A PreparedSurface refers to its PatchSet, which must outlive it. Tessellating does not change
+// what it has made; what it makes on first use is made once, under a lock (an exception while
+// making it leaves nothing made, and the next call tries again): several threads may tessellate
+// one PreparedSurface at once, each into its own Tessellation. A moved-from PreparedSurface may
+// only be destroyed or assigned to.
 
 #include <memory>
 #include <vector>
@@ -44,6 +44,7 @@ class PreparedSurface {
   explicit PreparedSurface(const PatchSet& set);
   /// A temporary set would not outlive its preparation.
   explicit PreparedSurface(PatchSet&&) = delete;
+  explicit PreparedSurface(const PatchSet&&) = delete;
   ~PreparedSurface();
   PreparedSurface(PreparedSurface&&) noexcept;
   PreparedSurface& operator=(PreparedSurface&&) noexcept;
@@ -59,11 +60,14 @@ class PreparedSurface {
   double tight_diagonal() const;
   /// The diagonal of the control points' box (PatchSet::size()).
   double control_diagonal() const noexcept;
-  /// The pieces of the patches split k x k (k = 1: the patches; 2 and 4 made on first use), with
-  /// the tight diagonal when `tight_diagonal`, else the control points'; k = 1 pieces carry
-  /// the solids when `with_solids`.
+  /// The pieces of the patches split k x k (k = 1: the patches; 2 and 4 made on first use); their
+  /// `diagonal` is the control points' (a tessellation with a relative tolerance uses the tight
+  /// one) and they carry no solids (solids() holds them).
   /// \throws InvalidInput unless k is 1, 2 or 4, or for k > 1 when the set has T-junctions.
-  const SurfacePieces& pieces(int k, bool tight_diagonal, bool with_solids = false) const;
+  const SurfacePieces& pieces(int k) const;
+  /// Per patch, the solid it bounds, or -1 (SurfacePieces::solids; made on first use: a volume
+  /// integral per patch, which only BackFaceCulling::automatic needs).
+  const std::vector<std::int32_t>& solids() const;
 
  private:
   const PatchSet* set_;

@@ -62,7 +62,7 @@ void Tessellator::plan_patches() {
     tolerance = *options_.tolerance;
   } else if (options_.relative_tolerance) {
     check_positive(*options_.relative_tolerance, "relative tolerance");
-    tolerance = *options_.relative_tolerance * pieces_.diagonal;
+    tolerance = *options_.relative_tolerance * diagonal_;
     check_positive(tolerance, "tolerance (relative tolerance times the box diagonal)");
   } else if (options_.segments) {
     if (*options_.segments < 1 || *options_.segments > (1 << 20)) {
@@ -77,7 +77,7 @@ void Tessellator::plan_patches() {
   const std::vector<bool> back_faces_hidden =
       options_.camera ? hidden_back_faces(*options_.camera) : std::vector<bool>();
   // Patches reaching behind the near limit get the tolerance of this depth.
-  const double near_depth = 1e-3 * pieces_.diagonal;
+  const double near_depth = 1e-3 * diagonal_;
   // Each piece's plan on its own (in parallel: each writes only its own plan). A piece that
   // cannot be planned is reported after the loop, the lowest such piece, so the message does not
   // depend on the threads.
@@ -139,17 +139,17 @@ std::vector<bool> Tessellator::hidden_back_faces(const Camera& camera) const {
     return std::vector<bool>(count_, options_.back_face_culling == BackFaceCulling::always);
   }
   std::vector<bool> hidden(count_, false);
-  if (pieces_.solids.empty()) return hidden;
+  if (solids_.empty()) return hidden;
   // Outside the box of a solid's control points is outside the solid (its convex hull).
   std::vector<Eigen::AlignedBox3d> boxes;
   for (std::size_t p = 0; p < count_; ++p) {
-    const std::int32_t solid = pieces_.solids[p];
+    const std::int32_t solid = solids_[p];
     if (solid < 0) continue;
     if (boxes.size() <= static_cast<std::size_t>(solid)) boxes.resize(static_cast<std::size_t>(solid) + 1);
     for (const Vec3& q : (*pieces_.patches)[p].control_points()) boxes[static_cast<std::size_t>(solid)].extend(q);
   }
   for (std::size_t p = 0; p < count_; ++p) {
-    const std::int32_t solid = pieces_.solids[p];
+    const std::int32_t solid = solids_[p];
     hidden[p] = solid >= 0 && !boxes[static_cast<std::size_t>(solid)].contains(camera.eye);
   }
   return hidden;

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -311,9 +312,19 @@ class Tessellator {
  public:
   // `planned`: the grid of every piece at the options' tolerance, when the caller has found them
   // already (tessellate(PatchSet) does, to choose the split).
+  // `diagonal`, `solids`: in place of pieces.diagonal and pieces.solids (a PreparedSurface keeps
+  // one set of pieces for either diagonal, and its solids apart, made on first use).
   Tessellator(const SurfacePieces& pieces, const TessellationOptions& options,
-              const std::vector<GridSize>* planned = nullptr)
-      : pieces_(pieces), options_(options), planned_(planned), count_(pieces.count), plans_(count_), slots_(count_) {
+              const std::vector<GridSize>* planned = nullptr, std::optional<double> diagonal = std::nullopt,
+              const std::vector<std::int32_t>* solids = nullptr)
+      : pieces_(pieces),
+        options_(options),
+        planned_(planned),
+        diagonal_(diagonal.value_or(pieces.diagonal)),
+        solids_(solids != nullptr ? *solids : pieces.solids),
+        count_(pieces.count),
+        plans_(count_),
+        slots_(count_) {
     PATCHWORK_ASSERT(pieces.bounds.size() == count_, "one bound per piece");
     PATCHWORK_ASSERT(planned == nullptr || (planned->size() == count_ && !options.camera), "one grid per piece");
   }
@@ -411,6 +422,8 @@ class Tessellator {
   const SurfacePieces& pieces_;
   const TessellationOptions& options_;
   const std::vector<GridSize>* planned_;
+  double diagonal_;
+  const std::vector<std::int32_t>& solids_;
   std::size_t count_;
   std::vector<PatchPlan> plans_;
   std::vector<std::array<EdgeSlot, 4>> slots_;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.h"
@@ -163,11 +164,34 @@ TEST(PatchGrid, BernsteinValuesAndDerivativesMatchTheCurvesModule) {
       const std::vector<double> expected = bernstein_all(n, t);
       const std::vector<double> expected_derivatives = bernstein_all_derivatives(n, t, 1);
       for (std::size_t i = 0; i < values.size(); ++i) {
-        EXPECT_NEAR(values[i], expected[i], 1e-15) << "n " << n << " t " << t << " i " << i;
-        EXPECT_NEAR(derivatives[i], expected_derivatives[i], 1e-13) << "n " << n << " t " << t << " i " << i;
+        // The same recurrence and the same difference: the same bits.
+        EXPECT_EQ(values[i], expected[i]) << "n " << n << " t " << t << " i " << i;
+        EXPECT_EQ(derivatives[i], expected_derivatives[i]) << "n " << n << " t " << t << " i " << i;
       }
     }
   }
+}
+
+// Re-tabulating from the object's own lists (a new degree, the same parameters) is the weights
+// of a fresh object, and a refused call leaves the weights as they were.
+TEST(PatchGrid, WeightsReassignedFromTheirOwnLists) {
+  const std::vector<double> us = {0.0, 0.25, 0.5, 1.0};
+  const std::vector<double> vs = {0.0, 1.0 / 3.0, 1.0};
+  PatchGridWeights weights(3, 2, us, vs);
+  weights.assign(2, 3, weights.us(), weights.vs());
+  const PatchGridWeights fresh(2, 3, us, vs);
+  ASSERT_EQ(weights.degree_u(), 2);
+  for (std::size_t k = 0; k < us.size(); ++k) {
+    EXPECT_TRUE(std::equal(weights.u_values(k).begin(), weights.u_values(k).end(), fresh.u_values(k).begin()));
+    EXPECT_TRUE(std::equal(weights.u_derivatives(k).begin(), weights.u_derivatives(k).end(), fresh.u_derivatives(k).begin()));
+  }
+  for (std::size_t k = 0; k < vs.size(); ++k) {
+    EXPECT_TRUE(std::equal(weights.v_values(k).begin(), weights.v_values(k).end(), fresh.v_values(k).begin()));
+  }
+  const std::vector<double> bad = {0.5, std::nan("")};
+  EXPECT_THROW(weights.assign(1, 1, bad, vs), InvalidInput);
+  EXPECT_EQ(weights.degree_u(), 2);
+  EXPECT_EQ(weights.us().size(), us.size());
 }
 
 TEST(PatchGrid, RejectsMismatchedDegrees) {

@@ -12,6 +12,7 @@
 #include "io/obj_freeform.h"
 #include "surfaces/patch_bounding_box.h"
 #include "tests/surfaces/patch_fixtures.h"
+#include "tests/surfaces/patch_set_fixtures.h"
 #include "tests/surfaces/tessellation_checks.h"
 
 namespace patchwork {
@@ -78,11 +79,13 @@ std::vector<Named> frames(const PatchSet& set) {
 // tessellation of the plain call on the set (which prepares afresh): nothing a frame keeps leaks
 // into the next.
 TEST(PreparedSurface, ReusedFrameAfterFrameEqualsAFreshTessellation) {
-  for (const PatchSet* set : {&teapot(), &torus()}) {
+  // The bulged cube is a solid: automatic back-face culling culls its far faces.
+  const PatchSet cube(testing::bulged_cube(std::vector<double>(24, 0.2)));
+  for (const PatchSet* set : {&teapot(), &torus(), &cube}) {
     const PreparedSurface prepared(*set);
     Tessellation reused;
     for (const Named& frame : frames(*set)) {
-      SCOPED_TRACE(frame.name + (set == &teapot() ? " (teapot)" : " (torus)"));
+      SCOPED_TRACE(frame.name + (set == &teapot() ? " (teapot)" : set == &torus() ? " (torus)" : " (cube)"));
       tessellate(prepared, frame.options, reused);
       const Tessellation fresh = tessellate(*set, frame.options);
       ASSERT_GT(fresh.mesh.triangle_count(), 0u);
@@ -97,9 +100,9 @@ TEST(PreparedSurface, TJunctionsKeepThePatchesWhole) {
   const PatchSet set(testing::t_junction_pieces(testing::wavy_bicubic(), {0.3}));
   ASSERT_EQ(set.t_junctions().size(), 1u);
   const PreparedSurface prepared(set);
-  EXPECT_EQ(prepared.pieces(1, true).count, set.count());
-  EXPECT_THROW(prepared.pieces(2, true), InvalidInput);
-  EXPECT_THROW(prepared.pieces(3, false), InvalidInput);
+  EXPECT_EQ(prepared.pieces(1).count, set.count());
+  EXPECT_THROW(prepared.pieces(2), InvalidInput);
+  EXPECT_THROW(prepared.pieces(3), InvalidInput);
   Tessellation reused;
   for (const double tolerance : {3e-2, 1e-3, 3e-2}) {
     tessellate(prepared, absolute(tolerance), reused);
@@ -108,7 +111,7 @@ TEST(PreparedSurface, TJunctionsKeepThePatchesWhole) {
 }
 
 // What preparing computes is what the set says: one set of cell bounds per patch, the control
-// points' diagonal, the tight box's diagonal, k x k pieces per patch.
+// points' diagonal, the tight box's diagonal, k x k pieces per patch, the solids.
 TEST(PreparedSurface, HoldsTheSetsBoundsAndPieces) {
   const PreparedSurface prepared(teapot());
   EXPECT_EQ(&prepared.set(), &teapot());
@@ -117,21 +120,41 @@ TEST(PreparedSurface, HoldsTheSetsBoundsAndPieces) {
   EXPECT_EQ(prepared.control_diagonal(), teapot().size());
   EXPECT_EQ(prepared.tight_diagonal(), bounding_box(teapot(), 1e-6 * teapot().size()).diagonal().norm());
   for (const int k : {1, 2, 4}) {
-    const SurfacePieces& pieces = prepared.pieces(k, true);
+    const SurfacePieces& pieces = prepared.pieces(k);
     EXPECT_EQ(pieces.count, teapot().count() * static_cast<std::size_t>(k * k));
-    EXPECT_EQ(pieces.diagonal, prepared.tight_diagonal());
-    EXPECT_EQ(prepared.pieces(k, false).diagonal, prepared.control_diagonal());
+    EXPECT_EQ(pieces.diagonal, prepared.control_diagonal());
+    EXPECT_TRUE(pieces.solids.empty());
     // Made once: the same object every time.
-    EXPECT_EQ(&prepared.pieces(k, true), &pieces);
+    EXPECT_EQ(&prepared.pieces(k), &pieces);
   }
-  // Only the automatic back-face culling asks for the solids: the teapot is open, none.
-  const SurfacePieces& with_solids = prepared.pieces(1, false, true);
-  ASSERT_EQ(with_solids.solids.size(), teapot().count());
-  for (const std::int32_t solid : with_solids.solids) EXPECT_EQ(solid, -1);
+  // The teapot is open: no solid. The bulged cube is one.
+  ASSERT_EQ(prepared.solids().size(), teapot().count());
+  for (const std::int32_t solid : prepared.solids()) EXPECT_EQ(solid, -1);
+  const PatchSet cube(testing::bulged_cube(std::vector<double>(24, 0.2)));
+  const PreparedSurface prepared_cube(cube);
+  for (const std::int32_t solid : prepared_cube.solids()) EXPECT_EQ(solid, 0);
   // A set without a surface cannot be prepared.
   const std::vector<Vec3> point(16, Vec3(1, 2, 3));
   const PatchSet dot({BezierPatch3(3, 3, point)});
   EXPECT_THROW(PreparedSurface{dot}, InvalidInput);
+}
+
+// The prepared path against the tessellator on pieces made without a PreparedSurface
+// (surface_pieces: whole patches, the solids, the diagonal the mode asks for): equal bit for bit
+// wherever the patches are not split, so preparing changes nothing of the old computation.
+TEST(PreparedSurface, EqualsTheTessellatorOnPiecesMadeWithoutIt) {
+  const PatchSet cube(testing::bulged_cube(std::vector<double>(24, 0.2)));
+  for (const PatchSet* set : {&teapot(), &torus(), &cube}) {
+    const PreparedSurface prepared(*set);
+    Tessellation reused;
+    for (Named frame : frames(*set)) {
+      frame.options.split_patches = false;
+      SCOPED_TRACE(frame.name);
+      const bool relative_mode = frame.options.relative_tolerance.has_value();
+      tessellate(prepared, frame.options, reused);
+      testing::expect_identical_tessellations(reused, tessellate(surface_pieces(*set, relative_mode), frame.options));
+    }
+  }
 }
 
 // Two threads tessellating one prepared surface at once (each into its own result, the pieces
