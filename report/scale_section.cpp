@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 // One teapot's tolerance: 10^-3 of its tight box diagonal (8.2049), absolute, so that every
 // scene is tessellated like its one teapot.
 constexpr double scene_tolerance = 0.0082;
-// Runs per scene (medians): whole-process times of the small scenes are a few milliseconds.
+// Timed runs per scene (medians; three times as many for the scenes of a few milliseconds).
 constexpr int scene_repeats = 3;
 
 struct SceneRow {
@@ -52,16 +53,32 @@ double median(std::vector<double> values) {
   return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
-// Runs `command` under GNU time; its wall seconds and peak resident bytes.
-std::pair<double, double> timed(const std::string& command, const fs::path& scratch) {
+// Runs `command` under GNU time; its peak resident bytes.
+double peak_bytes(const std::string& command, const fs::path& scratch) {
   const fs::path times = scratch / "time.txt";
-  const std::string line = "/usr/bin/time -f '%e %M' -o " + quoted(times) + " " + command;
+  const std::string line = "/usr/bin/time -f '%M' -o " + quoted(times) + " " + command;
   if (std::system(line.c_str()) != 0) throw NumericalError("scale section: failed: " + command);
   std::ifstream in(times);
-  double seconds = 0.0;
   double kilobytes = 0.0;
-  if (!(in >> seconds >> kilobytes)) throw NumericalError("scale section: no GNU time output for " + command);
-  return {seconds, 1024.0 * kilobytes};
+  if (!(in >> kilobytes)) throw NumericalError("scale section: no GNU time output for " + command);
+  return 1024.0 * kilobytes;
+}
+
+// Wall seconds of `command` run through the shell (std::system), less the shell's own start:
+// the median of `repeats` runs of each (GNU time prints hundredths, too coarse for one teapot).
+double wall_seconds(const std::string& command, int repeats) {
+  const auto run = [](const std::string& line) {
+    const auto start = std::chrono::steady_clock::now();
+    if (std::system(line.c_str()) != 0) throw NumericalError("scale section: failed: " + line);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  std::vector<double> seconds;
+  std::vector<double> shell;
+  for (int r = 0; r < repeats; ++r) {
+    seconds.push_back(run(command));
+    shell.push_back(run(":"));
+  }
+  return std::max(median(seconds) - median(shell), 0.0);
 }
 
 nlohmann::json read_json(const fs::path& file) {
@@ -81,20 +98,16 @@ SceneRow scene_row(int copies, const fs::path& bench_dir, const fs::path& cli, c
   if (std::system(make.c_str()) != 0) throw NumericalError("scale section: make_scene failed");
   const std::string tessellate = quoted(cli) + " tessellate " + quoted(scene) + " -o " + quoted(glb) + " --tolerance " +
                                  text("%g", scene_tolerance) + " --threads 2 --json";
-  std::vector<double> seconds;
-  std::vector<double> peaks;
-  for (int r = 0; r < scene_repeats; ++r) {
-    const auto [s, peak] = timed(tessellate + " --no-measure > " + quoted(summary), scratch);
-    seconds.push_back(s);
-    peaks.push_back(peak);
-  }
-  row.seconds = median(seconds);
-  row.peak_bytes = median(peaks);
+  const std::string unmeasured_run = tessellate + " --no-measure > " + quoted(summary);
+  row.seconds = wall_seconds(unmeasured_run, copies <= 16 ? 3 * scene_repeats : scene_repeats);
+  row.peak_bytes = peak_bytes(unmeasured_run, scratch);
   const nlohmann::json unmeasured = read_json(summary);
   row.patches = unmeasured.at("patches").get<std::size_t>();
   row.triangles = unmeasured.at("triangles").get<std::size_t>();
   row.glb_bytes = static_cast<double>(fs::file_size(glb));
-  timed(tessellate + " > " + quoted(summary), scratch);
+  if (std::system((tessellate + " > " + quoted(summary)).c_str()) != 0) {
+    throw NumericalError("scale section: failed: " + tessellate);
+  }
   const nlohmann::json measured = read_json(summary);
   row.tessellation = measured.at("tessellation_seconds").get<double>();
   row.measuring = measured.at("measure_seconds").get<double>();
@@ -127,7 +140,10 @@ std::string scale_plot(const std::vector<SceneRow>& rows, const fs::path& data) 
   const SceneRow& anchor = rows.size() > 1 ? rows[1] : rows[0];
   std::ostringstream gp;
   gp << "set terminal pngcairo size 900,600 font ',11'\nset output 'scale.png'\n"
-     << "set logscale xy\nset xlabel 'patches'\nset ylabel 'seconds'\nset y2label 'peak memory, MB'\n"
+     << "set logscale xy\nset xrange [" << rows.front().patches / 2 << ":" << rows.back().patches * 2 << "]\n"
+     << "set yrange [" << rows.front().seconds / 4 << ":" << rows.back().seconds * 4 << "]\n"
+     << "set y2range [" << rows.front().peak_bytes / 4e6 << ":" << rows.back().peak_bytes * 4 / 1e6 << "]\n"
+     << "set xlabel 'patches'\nset ylabel 'seconds'\nset y2label 'peak memory, MB'\n"
      << "set logscale y2\nset ytics nomirror\nset y2tics\nset key left top\nset grid\n"
      << "plot 'scale.dat' using 1:2 with linespoints title 'whole process, seconds', "
      << "x * " << anchor.seconds / static_cast<double>(anchor.patches) << " with lines dt 2 title 'linear (seconds)', "
@@ -197,8 +213,9 @@ ReportSection scale_section(const fs::path& bench_dir, const fs::path& cli, cons
     fs::remove_all(scratch);
     md << "Scenes of rotated teapots that never touch (`bench/make_scene`), tessellated by the CLI as a user runs it:"
        << " `patchwork tessellate SCENE.bpt -o SCENE.glb --tolerance " << text("%g", scene_tolerance)
-       << " --no-measure --threads 2` (10^-3 of one teapot's diagonal), whole process, wall time and peak resident"
-       << " memory by GNU time, median of " << scene_repeats << " runs; the last two columns from one more run with"
+       << " --no-measure --threads 2` (10^-3 of one teapot's diagonal), whole process: the wall time the median of "
+       << scene_repeats << " runs (" << 3 * scene_repeats << " for 1 and 16 teapots) less the median start of the shell"
+       << " that runs them, the peak resident memory by GNU time; the last two columns from one more run with"
        << " the meter on (the CLI's `tessellation_seconds` and `measure_seconds`).\n\n"
        << scene_table(rows) << "\n";
     const SceneRow& one = rows.front();

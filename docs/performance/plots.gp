@@ -71,3 +71,18 @@ plot 'hard_cases_seventh_power_horner.dat' using 1:($2 > 0 ? $2 : 1.0e-18) with 
      u*x with lines lw 2 dt 2 lc rgb 'black' title 'u·cond', \
      g(2*n)*x with lines lw 2 lc rgb '#1f77b4' title 'γ_{2n}·cond, n = 40', \
      u + 2*g(3*n)**2*x with lines lw 2 lc rgb '#d62728' title 'u + 2γ_{3n}^2·cond, n = 40'
+set terminal pngcairo size 900,600 font ',11'
+set output 'scale.png'
+set logscale xy
+set xrange [16:65536]
+set yrange [0.0025:26.24]
+set y2range [2.25:9092]
+set xlabel 'patches'
+set ylabel 'seconds'
+set y2label 'peak memory, MB'
+set logscale y2
+set ytics nomirror
+set y2tics
+set key left top
+set grid
+plot 'scale.dat' using 1:2 with linespoints title 'whole process, seconds', x * 0.000195313 with lines dt 2 title 'linear (seconds)', 'scale.dat' using 1:3 axes x1y2 with linespoints title 'peak memory, MB', x * 0.083408 axes x1y2 with lines dt 3 title 'linear (MB)'
