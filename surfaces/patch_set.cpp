@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <numeric>
 #include <ostream>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include <variant>
 
 #include "core/errors.h"
+#include "core/parallel.h"
 #include "core/union_find.h"
 #include "curves/continuity.h"
 #include "curves/degree.h"
@@ -343,6 +345,12 @@ PatchSet::PatchSet(Kinds kinds, std::span<const KnownJoin> joins, double relativ
       shared_.push_back(shared);
     }
   }
+  struct Found {
+    std::size_t a;
+    std::size_t b;
+    bool reversed;
+  };
+  std::vector<Found> found;
   for (std::size_t a = 0; a < edges.size(); ++a) {
     if (known[a]) continue;
     std::vector<std::size_t> candidates;
@@ -363,10 +371,28 @@ PatchSet::PatchSet(Kinds kinds, std::span<const KnownJoin> joins, double relativ
       }
       for (bool reversed : {false, true}) {
         if (rational_pair ? !rational_match(a, b, reversed) : max_distance(pa, pb, reversed) > tolerance_) continue;
-        shared_.push_back(shared_edge(a, b, reversed));
+        found.push_back({a, b, reversed});
         matched[a] = matched[b] = true;
         break;
       }
+    }
+  }
+  // The matched edges' continuity (a normal-angle search along each edge: most of the set's
+  // construction), in parallel, each into its own slot; an exception is rethrown as the lowest
+  // edge's, whatever the threads.
+  {
+    const std::size_t first = shared_.size();
+    shared_.resize(first + found.size());
+    std::vector<std::exception_ptr> errors(found.size());
+    parallel_for(found.size(), 0, [&](std::size_t k) {
+      try {
+        shared_[first + k] = shared_edge(found[k].a, found[k].b, found[k].reversed);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    });
+    for (const std::exception_ptr& error : errors) {
+      if (error) std::rethrow_exception(error);
     }
   }
   // T-junctions among the edges left: each long edge tiled by parts (longest first, so that a

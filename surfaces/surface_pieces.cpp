@@ -23,12 +23,13 @@ std::vector<std::vector<SecondDerivativeBounds>> cell_bounds(const PatchSet& set
   if (!(set.size() > 0.0)) {
     throw InvalidInput("tessellate: every control point is the same point: there is no surface to tessellate");
   }
-  std::vector<std::vector<SecondDerivativeBounds>> cells;
-  for (std::uint32_t p = 0; p < set.count(); ++p) {
-    const RationalBezierPatch* rational = set.rational(p);
-    cells.push_back(rational != nullptr ? piece_second_derivative_bounds(*rational, bound_pieces)
-                                        : piece_second_derivative_bounds(set.control_nets()[p], bound_pieces));
-  }
+  // Each patch into its own slot, on every core (the same bounds on any number of threads).
+  std::vector<std::vector<SecondDerivativeBounds>> cells(set.count());
+  parallel_for(set.count(), 0, [&](std::size_t p) {
+    const RationalBezierPatch* rational = set.rational(static_cast<std::uint32_t>(p));
+    cells[p] = rational != nullptr ? piece_second_derivative_bounds(*rational, bound_pieces)
+                                   : piece_second_derivative_bounds(set.control_nets()[p], bound_pieces);
+  });
   return cells;
 }
 
