@@ -7,6 +7,7 @@
 // scratch keep their storage) must give each input's fresh result exactly.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -32,15 +33,26 @@ std::vector<bool> meshed_patches(const PatchSet& set, const std::vector<std::uin
 // patch's own collapsed edges (surfaces/tessellator.h), so patches that touch at a point, or
 // whose poles meet without a shared edge, stay apart; and analyze() joins faces only through
 // edges. A patch all of whose triangles were dropped (degenerate at its collapsed edges) is in no
-// component.
+// component. An edge shared with two others (three patches on one edge) keeps its first pairing,
+// in the set's order, and a T-junction whose long edge or part is paired already does not join
+// it (build_edge_classes): found by fuzzing on 2026-12-04, where a third patch on an edge was
+// counted as joined.
 Count patch_components(const PatchSet& set, const std::vector<bool>& meshed) {
   const std::size_t count = set.patches().size();
   UnionFind components(count);
+  std::vector<std::array<bool, 4>> paired(count, {false, false, false, false});
+  const auto claim = [&](const EdgeRef& e) -> bool& { return paired[e.patch][static_cast<std::size_t>(e.edge)]; };
   for (const SharedEdge& shared : set.shared_edges()) {
+    if (claim(shared.first) || claim(shared.second)) continue;
+    claim(shared.first) = claim(shared.second) = true;
     if (meshed[shared.first.patch] && meshed[shared.second.patch]) components.unite(shared.first.patch, shared.second.patch);
   }
   for (const TJunction& t : set.t_junctions()) {
+    if (claim(t.edge)) continue;
+    claim(t.edge) = true;
     for (const EdgeRef& part : t.parts) {
+      if (claim(part)) continue;
+      claim(part) = true;
       if (meshed[t.edge.patch] && meshed[part.patch]) components.unite(t.edge.patch, part.patch);
     }
   }
