@@ -28,31 +28,47 @@ std::vector<bool> meshed_patches(const PatchSet& set, const std::vector<std::uin
   return meshed;
 }
 
+// Whether every patch edge is in at most one join (shared edge, T-junction). An edge shared by
+// three patches keeps its first pairing for its points, while its corners are welded through
+// every pairing (build_edge_classes, number_welded_points): the third patch then joins the mesh
+// through an edge only where that edge has one segment, which the set cannot tell. Found by
+// fuzzing on 2026-12-04 (a bilinear pair and a cubic patch on one edge, relative 0.25: two
+// components where the set has one; at one segment a second input had them joined).
+bool components_comparable(const PatchSet& set) {
+  std::vector<std::array<int, 4>> joins(set.patches().size(), {0, 0, 0, 0});
+  const auto count = [&](const EdgeRef& e) { return ++joins[e.patch][static_cast<std::size_t>(e.edge)]; };
+  bool single = true;
+  for (const SharedEdge& shared : set.shared_edges()) {
+    const bool first = count(shared.first) == 1;  // both counted, always
+    const bool second = count(shared.second) == 1;
+    single = single && first && second;
+  }
+  for (const TJunction& t : set.t_junctions()) {
+    const bool long_edge = count(t.edge) == 1;
+    single = single && long_edge;
+    for (const EdgeRef& part : t.parts) {
+      const bool alone = count(part) == 1;
+      single = single && alone;
+    }
+  }
+  return single;
+}
+
 // The components the welded mesh must have, counted on the patch set: patches joined by shared
 // edges are one component. The tessellator welds corners only through shared edges and a
 // patch's own collapsed edges (surfaces/tessellator.h), so patches that touch at a point, or
 // whose poles meet without a shared edge, stay apart; and analyze() joins faces only through
 // edges. A patch all of whose triangles were dropped (degenerate at its collapsed edges) is in no
-// component. An edge shared with two others (three patches on one edge) keeps its first pairing,
-// in the set's order, and a T-junction whose long edge or part is paired already does not join
-// it (build_edge_classes): found by fuzzing on 2026-12-04, where a third patch on an edge was
-// counted as joined.
+// component.
 Count patch_components(const PatchSet& set, const std::vector<bool>& meshed) {
   const std::size_t count = set.patches().size();
   UnionFind components(count);
-  std::vector<std::array<bool, 4>> paired(count, {false, false, false, false});
-  const auto claim = [&](const EdgeRef& e) -> bool& { return paired[e.patch][static_cast<std::size_t>(e.edge)]; };
   for (const SharedEdge& shared : set.shared_edges()) {
-    if (claim(shared.first) || claim(shared.second)) continue;
-    claim(shared.first) = claim(shared.second) = true;
-    if (meshed[shared.first.patch] && meshed[shared.second.patch]) components.unite(shared.first.patch, shared.second.patch);
+    if (meshed[shared.first.patch] && meshed[shared.second.patch])
+      components.unite(shared.first.patch, shared.second.patch);
   }
   for (const TJunction& t : set.t_junctions()) {
-    if (claim(t.edge)) continue;
-    claim(t.edge) = true;
     for (const EdgeRef& part : t.parts) {
-      if (claim(part)) continue;
-      claim(part) = true;
       if (meshed[t.edge.patch] && meshed[part.patch]) components.unite(t.edge.patch, part.patch);
     }
   }
@@ -165,7 +181,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (boundary_loops_comparable(set, meshed)) {
       PATCHWORK_FUZZ_CHECK(report.boundary_loops == static_cast<Count>(set.boundary_loops().size()));
     }
-    PATCHWORK_FUZZ_CHECK(report.components == patch_components(set, meshed));
+    if (components_comparable(set)) PATCHWORK_FUZZ_CHECK(report.components == patch_components(set, meshed));
     static Tessellation reused;
     tessellate(set, options, reused);
     const RenderMesh& a = reused.mesh;
