@@ -155,6 +155,21 @@ inline void project_homogeneous(const Vec4& h, const Vec4& hu, const Vec4& hv, V
   dv = (hv.head<3>() - point * hv[3]) / w;
 }
 
+/// Vec3s from three coordinate arrays (vectorised: the Vec3s are packed doubles): xyz[3a + c]
+/// from x[a], y[a], z[a] for a < count.
+[[gnu::always_inline]] inline void interleave(std::size_t count, const double* __restrict x, const double* __restrict y,
+                                              const double* __restrict z, double* __restrict xyz) {
+  for (std::size_t a = 0; a < count; ++a) {
+    xyz[3 * a] = x[a];
+    xyz[3 * a + 1] = y[a];
+    xyz[3 * a + 2] = z[a];
+  }
+}
+
+/// Whether the processor runs AVX2 (x86-64; false elsewhere): the grid and point kernels take
+/// their AVX2 copies then (no FMA: the same results).
+bool has_avx2();
+
 /// Checks the weights' degrees against (n, m) and the room in `out`. \throws InvalidInput.
 void check_grid_output(int n, int m, const PatchGridWeights& weights, const GridSamplesView& out);
 
