@@ -9,13 +9,13 @@
 #include "core/errors.h"
 #include "curves/bspline_conversion.h"
 #include "queries/closest_point.h"
+#include "queries/net_piece.h"
 #include "queries/query_arguments.h"
 
 namespace patchwork {
 namespace {
 
-constexpr double unit_roundoff = std::numeric_limits<double>::epsilon() / 2;
-constexpr double infinity = std::numeric_limits<double>::infinity();
+constexpr double unbounded = std::numeric_limits<double>::infinity();
 
 // One Bezier segment of the curve in homogeneous form (w = 1 when polynomial), for halving, and
 // its exact evaluation for Newton.
@@ -75,7 +75,7 @@ template <int Dim>
 double margin_of(const std::vector<Point<Dim + 1>>& points, int depth) {
   double size = 0.0;
   for (const auto& h : points) size = std::max(size, dehomogenised<Dim>(h).cwiseAbs().maxCoeff());
-  return 8.0 * (depth + 4) * (static_cast<double>(points.size()) + 1) * unit_roundoff * size;
+  return 8.0 * (depth + 4) * (static_cast<double>(points.size()) + 1) * detail::unit_roundoff * size;
 }
 
 // The distance from q to a cylinder about the chord P_0 P_n that holds every control point (the
@@ -92,7 +92,7 @@ double lower_bound(const std::vector<Point<Dim + 1>>& points, int depth, const P
     distance = std::sqrt(box.squaredExteriorDistance(q));
   } else {
     const Point<Dim> axis = axis_vector / length;
-    double low = infinity, high = -infinity, radius = 0.0;
+    double low = unbounded, high = -unbounded, radius = 0.0;
     for (const auto& h : points) {
       const Point<Dim> d = dehomogenised<Dim>(h) - p0;
       const double along = d.dot(axis);
@@ -150,7 +150,7 @@ Foot newton_foot(const Segment<Dim>& segment, int index, double t, const Point<D
       best = distance;
       best_t = next;
     }
-    if (std::abs(next - t) <= 4 * unit_roundoff * std::max({std::abs(t), std::abs(segment.a), std::abs(segment.b)})) break;
+    if (std::abs(next - t) <= 4 * detail::unit_roundoff * std::max({std::abs(t), std::abs(segment.a), std::abs(segment.b)})) break;
     t = next;
   }
   return {index, best_t, best};
@@ -170,7 +170,7 @@ CurveClosestPoint<Dim> search(const std::vector<Segment<Dim>>& segments, const P
   const double newton_threshold = 1e-6 * size;
 
   std::vector<Foot> feet;
-  Foot best{0, segments[0].a, infinity};
+  Foot best{0, segments[0].a, unbounded};
   auto offer = [&](const Foot& foot, bool is_local_minimum) {
     if (is_local_minimum) feet.push_back(foot);
     if (foot.distance < best.distance) best = foot;
@@ -183,8 +183,8 @@ CurveClosestPoint<Dim> search(const std::vector<Segment<Dim>>& segments, const P
     offer({s, seg.b, (dehomogenised<Dim>(seg.points.back()) - q).norm()}, false);
     heap.push({lower_bound<Dim>(seg.points, 0, q), s, seg.a, seg.b, 0, seg.points});
   }
-  double pruned_lower = infinity;
-  double lower = infinity;
+  double pruned_lower = unbounded;
+  double lower = unbounded;
   std::int64_t examined = 0;
   while (!heap.empty()) {
     CurvePiece<Dim> piece = heap.top();

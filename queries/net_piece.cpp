@@ -9,7 +9,6 @@
 namespace patchwork::detail {
 namespace {
 
-constexpr double unit_roundoff = std::numeric_limits<double>::epsilon() / 2;
 
 // De Casteljau at s of `count` points at stride `stride` starting at `first`, writing the left
 // piece's points to `left` and the right piece's to `right` (same stride).

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -27,6 +28,9 @@
 #include "surfaces/patch_set.h"
 
 namespace patchwork::detail {
+
+/// Half the machine epsilon: the relative error of one rounding.
+inline constexpr double unit_roundoff = std::numeric_limits<double>::epsilon() / 2;
 
 /// A sub-patch's homogeneous control net and where it lies in its patch.
 struct NetPiece {

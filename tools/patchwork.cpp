@@ -16,6 +16,7 @@
 #include "tools/info_command.h"
 #include "tools/patch_input.h"
 #include "tools/patches_command.h"
+#include "tools/query_commands.h"
 #include "tools/subdivide_command.h"
 #include "tools/tessellate_command.h"
 
@@ -129,6 +130,26 @@ int main(int argc, char** argv) {
   convert->add_option("input", convert_input, "Input file")->required();
   convert->add_option("output", convert_output, "Output file")->required();
 
+  std::string closest_file;
+  std::vector<double> closest_point;
+  bool closest_json = false;
+  CLI::App* closest = app.add_subcommand(
+      "closest", "The closest point of a patch set (BPT, free-form OBJ) to a point, with a certified interval");
+  closest->add_option("file", closest_file, "BPT or free-form OBJ file")->required();
+  closest->add_option("point", closest_point, "The point X Y Z")->required()->expected(3)->allow_extra_args(false);
+  closest->add_flag("--json", closest_json, "Print JSON: distance, point, patch, u, v, bound [lower, upper]");
+
+  std::string ray_file;
+  std::vector<double> ray_origin, ray_direction;
+  bool ray_json = false;
+  CLI::App* raycast = app.add_subcommand("raycast", "Every hit of a ray with a patch set (BPT, free-form OBJ), in order");
+  raycast->add_option("file", ray_file, "BPT or free-form OBJ file")->required();
+  raycast->add_option("--origin", ray_origin, "The ray's origin X,Y,Z")->required()->delimiter(',');
+  raycast->add_option("--direction", ray_direction, "The ray's direction X,Y,Z (any length but zero)")
+      ->required()
+      ->delimiter(',');
+  raycast->add_flag("--json", ray_json, "Print JSON: hits [{t, patch, u, v, point, normal, grazing}]");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -149,6 +170,8 @@ int main(int argc, char** argv) {
     if (convert->parsed()) return convert_input;
     if (subdivide->parsed()) return sub.input;
     if (tessellate->parsed()) return tess.input;
+    if (closest->parsed()) return closest_file;
+    if (raycast->parsed()) return ray_file;
     return none;
   };
   try {
@@ -162,6 +185,8 @@ int main(int argc, char** argv) {
       }
     }
     if (convert->parsed()) patchwork::tools::run_convert(convert_input, convert_output);
+    if (closest->parsed()) patchwork::tools::run_closest(std::cout, closest_file, {closest_point[0], closest_point[1], closest_point[2]}, closest_json);
+    if (raycast->parsed()) patchwork::tools::run_raycast(std::cout, ray_file, ray_origin, ray_direction, ray_json);
     if (subdivide->parsed()) patchwork::tools::run_subdivide(std::cout, std::cerr, sub);
     if (tessellate->parsed()) {
       tess.show_progress = ::isatty(STDERR_FILENO) != 0;

@@ -21,6 +21,7 @@
 #include "io/mesh_file.h"
 #include "meshes/topology.h"
 #include "tests/support/ci_environment.h"
+#include "tests/support/cli_run.h"
 #include "tests/support/temporary_directory.h"
 #include "tests/support/moved_patches.h"
 
@@ -29,28 +30,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code;
-  std::string out;
-  std::string err;
-};
-
+using testing::CliRun;
+using testing::quote;
 using testing::slurp;
-
-std::string quote(const std::string& s) { return "'" + s + "'"; }
-
-// Runs `patchwork ARGS` with stdout and stderr captured in files of `folder`.
-CliRun patchwork(const testing::TemporaryDirectory& folder, const std::string& arguments) {
-  const fs::path out = folder.path() / "stdout.txt";
-  const fs::path err = folder.path() / "stderr.txt";
-  const std::string command =
-      quote(PATCHWORK_CLI) + " " + arguments + " > " + quote(out.string()) + " 2> " + quote(err.string());
-  const int status = std::system(command.c_str());
-  CliRun run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-  fs::remove(out);
-  fs::remove(err);
-  return run;
-}
+constexpr auto& patchwork = testing::run_patchwork;
 
 const std::string teapot = quote(PATCHWORK_DATA_DIR "/teapot.bpt");
 

@@ -1,0 +1,314 @@
+#include "queries/ray_cast.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/errors.h"
+#include "queries/patch_evaluation.h"
+#include "queries/query_arguments.h"
+
+namespace patchwork {
+namespace {
+
+constexpr int max_degree = 31;
+
+// The two scalar nets w_ij a.(P_ij - o), w_ij b.(P_ij - o) of a piece.
+struct ScalarNets {
+  int n = 0, m = 0;
+  std::array<std::vector<double>, 2> g;
+  double margin = 0.0;
+};
+
+ScalarNets scalar_nets(const detail::NetPiece& piece, const Vec3& origin, const Vec3& a, const Vec3& b) {
+  ScalarNets nets;
+  nets.n = piece.n;
+  nets.m = piece.m;
+  const std::size_t count = piece.net.size();
+  nets.g[0].resize(count);
+  nets.g[1].resize(count);
+  double size = 0.0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec4& h = piece.net[k];
+    const Vec3 d = h.head<3>() / h[3] - origin;
+    nets.g[0][k] = h[3] * a.dot(d);
+    nets.g[1][k] = h[3] * b.dot(d);
+    size = std::max(size, h[3] * (d.norm() + origin.norm() + h.head<3>().norm() / h[3]));
+  }
+  nets.margin = detail::rounding_margin(piece) * 2 + 16 * detail::unit_roundoff * size;
+  return nets;
+}
+
+// All coefficients beyond the margin on one side: no zero of that function in the piece.
+bool one_sign(const std::vector<double>& g, double margin) {
+  bool all_positive = true, all_negative = true;
+  for (double c : g) {
+    all_positive = all_positive && c > margin;
+    all_negative = all_negative && c < -margin;
+  }
+  return all_positive || all_negative;
+}
+
+struct Interval {
+  double low, high;
+};
+
+Interval operator*(const Interval& x, const Interval& y) {
+  const double p[4] = {x.low * y.low, x.low * y.high, x.high * y.low, x.high * y.high};
+  return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
+}
+
+// The range of d g / ds (dir 0) or d g / dt over the piece: the differenced net's extremes.
+Interval derivative_range(const std::vector<double>& g, int n, int m, int dir) {
+  Interval r{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  const int degree = dir == 0 ? n : m;
+  if (degree == 0) return {0.0, 0.0};
+  for (int j = 0; j <= m - (dir == 1); ++j) {
+    for (int i = 0; i <= n - (dir == 0); ++i) {
+      const std::size_t k = static_cast<std::size_t>(i + (n + 1) * j);
+      const std::size_t next = dir == 0 ? k + 1 : k + static_cast<std::size_t>(n + 1);
+      const double c = degree * (g[next] - g[k]);
+      r.low = std::min(r.low, c);
+      r.high = std::max(r.high, c);
+    }
+  }
+  return r;
+}
+
+// The Jacobian of (g_1, g_2) is regular wherever the differenced nets allow: at most one zero.
+bool certified_unique(const ScalarNets& nets) {
+  const Interval g1s = derivative_range(nets.g[0], nets.n, nets.m, 0), g1t = derivative_range(nets.g[0], nets.n, nets.m, 1);
+  const Interval g2s = derivative_range(nets.g[1], nets.n, nets.m, 0), g2t = derivative_range(nets.g[1], nets.n, nets.m, 1);
+  const Interval p = g1s * g2t, q = g1t * g2s;
+  const double low = p.low - q.high, high = p.high - q.low;
+  const double slack = 8 * detail::unit_roundoff * (std::abs(p.low) + std::abs(p.high) + std::abs(q.low) + std::abs(q.high));
+  return low > slack || high < -slack;
+}
+
+// Value and first derivatives of the scalar Bernstein patch g at local (s, t).
+std::array<double, 3> scalar_derivatives(const std::vector<double>& g, int n, int m, double s, double t) {
+  std::array<double, max_degree + 1> bu{}, du{}, bv{}, dv{};
+  const auto basis = [](int degree, double x, double* b, double* d) {
+    // Bernstein values of degree - 1 first, then of degree, with derivatives from the former.
+    std::array<double, max_degree + 1> lower{};
+    lower[0] = 1.0;
+    for (int k = 1; k < degree; ++k) {
+      for (int i = k; i > 0; --i) lower[static_cast<std::size_t>(i)] = (1 - x) * lower[static_cast<std::size_t>(i)] + x * lower[static_cast<std::size_t>(i - 1)];
+      lower[0] *= (1 - x);
+    }
+    for (int i = 0; i <= degree; ++i) {
+      const double left = i > 0 ? lower[static_cast<std::size_t>(i - 1)] : 0.0;
+      const double right = i < degree ? lower[static_cast<std::size_t>(i)] : 0.0;
+      b[i] = degree == 0 ? 1.0 : (1 - x) * right + x * left;
+      d[i] = degree * (left - right);
+    }
+  };
+  basis(n, s, bu.data(), du.data());
+  basis(m, t, bv.data(), dv.data());
+  std::array<double, 3> out{0.0, 0.0, 0.0};
+  for (int j = 0; j <= m; ++j) {
+    double row = 0.0, row_s = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double c = g[static_cast<std::size_t>(i + (n + 1) * j)];
+      row += bu[static_cast<std::size_t>(i)] * c;
+      row_s += du[static_cast<std::size_t>(i)] * c;
+    }
+    out[0] += bv[static_cast<std::size_t>(j)] * row;
+    out[1] += bv[static_cast<std::size_t>(j)] * row_s;
+    out[2] += dv[static_cast<std::size_t>(j)] * row;
+  }
+  return out;
+}
+
+// Newton on (g_1, g_2) = 0 in the piece's local parameters from its centre; the zero if it
+// converges within the piece (widened by a hair, so a hit on the piece's edge is found from
+// either side).
+bool local_newton(const ScalarNets& nets, double& s, double& t) {
+  s = t = 0.5;
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const auto g1 = scalar_derivatives(nets.g[0], nets.n, nets.m, s, t);
+    const auto g2 = scalar_derivatives(nets.g[1], nets.n, nets.m, s, t);
+    const double det = g1[1] * g2[2] - g1[2] * g2[1];
+    if (!(std::abs(det) > 0.0)) return false;
+    const double ds = (g1[0] * g2[2] - g1[2] * g2[0]) / det;
+    const double dt = (g1[1] * g2[0] - g1[0] * g2[1]) / det;
+    s -= ds;
+    t -= dt;
+    if (!(s > -0.25 && s < 1.25 && t > -0.25 && t < 1.25)) return false;
+    if (std::abs(ds) + std::abs(dt) <= 1e-14) break;
+  }
+  const double hair = 1e-9;
+  return s >= -hair && s <= 1 + hair && t >= -hair && t <= 1 + hair;
+}
+
+struct Ray {
+  Vec3 origin, direction, a, b;
+  double t_min, t_max;
+};
+
+// Newton on the patch itself from (u, v): the plane distances (a.(F-o), b.(F-o)) to zero. The
+// parameters may leave the square by a hair (a hit on an edge); the caller decides.
+void polish(const PatchSet& set, std::uint32_t p, const Ray& ray, double& u, double& v) {
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    const PartialDerivatives<3> d = detail::patch_derivatives(set, p, u, v, 1);
+    const Vec3 r = d.at(0, 0) - ray.origin;
+    Eigen::Matrix2d jacobian;
+    jacobian << ray.a.dot(d.at(1, 0)), ray.a.dot(d.at(0, 1)), ray.b.dot(d.at(1, 0)), ray.b.dot(d.at(0, 1));
+    const Vec2 residual(ray.a.dot(r), ray.b.dot(r));
+    if (!(std::abs(jacobian.determinant()) > 0.0)) return;
+    const Vec2 step = jacobian.inverse() * residual;
+    if (!step.allFinite()) return;
+    u = std::clamp(u - step[0], -1e-6, 1 + 1e-6);
+    v = std::clamp(v - step[1], -1e-6, 1 + 1e-6);
+    if (step.cwiseAbs().maxCoeff() <= 1e-15) break;
+  }
+}
+
+// The distance of patch p's point at (u, v) from the ray.
+double off_ray(const PatchSet& set, std::uint32_t p, const Ray& ray, double u, double v) {
+  const Vec3 r = detail::patch_point(set, p, u, v) - ray.origin;
+  return std::hypot(ray.a.dot(r), ray.b.dot(r));
+}
+
+struct HitCandidate {
+  RayHit hit;
+  double off_ray;
+};
+
+void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, double v, bool grazing,
+             std::vector<HitCandidate>& hits) {
+  // A root outside the square by more than rounding belongs to the neighbour across the edge.
+  if (u < -1e-12 || u > 1 + 1e-12 || v < -1e-12 || v > 1 + 1e-12) return;
+  RayHit hit;
+  hit.patch = p;
+  hit.u = std::clamp(u, 0.0, 1.0);
+  hit.v = std::clamp(v, 0.0, 1.0);
+  hit.point = detail::patch_point(set, p, hit.u, hit.v);
+  hit.t = ray.direction.dot(hit.point - ray.origin) / ray.direction.squaredNorm();
+  if (!(hit.t >= ray.t_min && hit.t <= ray.t_max)) return;
+  hit.normal = detail::patch_unit_normal(set, p, hit.u, hit.v);
+  hit.grazing = grazing || std::abs(hit.normal.dot(ray.direction.normalized())) < 1e-6;
+  hits.push_back({hit, off_ray(set, p, ray, hit.u, hit.v)});
+}
+
+// The hits in one piece, halving where one hit per piece cannot be certified.
+void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& root, double size, std::vector<HitCandidate>& hits,
+                std::int64_t& examined) {
+  std::vector<detail::NetPiece> stack{root};
+  while (!stack.empty()) {
+    detail::NetPiece piece = std::move(stack.back());
+    stack.pop_back();
+    ++examined;
+    const ScalarNets nets = scalar_nets(piece, ray.origin, ray.a, ray.b);
+    if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin)) continue;
+    if (certified_unique(nets)) {
+      double s = 0.5, t = 0.5;
+      if (local_newton(nets, s, t)) {
+        const Vec2 uv = piece.global(s, t);
+        double u = uv[0], v = uv[1];
+        polish(set, piece.patch, ray, u, v);
+        add_hit(set, ray, piece.patch, u, v, false, hits);
+        continue;
+      }
+      // Newton left the piece: a hit near its edge, or none; halving decides.
+    }
+    // Small in space (a wedge at a pole is small long before its parameter range is), or in
+    // both parameters.
+    const bool tiny = detail::control_box(piece).diagonal().norm() <= 1e-7 * size ||
+                      ((piece.u1 - piece.u0) <= 0x1p-30 && (piece.v1 - piece.v0) <= 0x1p-30);
+    if (tiny) {
+      // Uncertified down to the smallest pieces: a tangent contact if the centre is on the ray.
+      double u = 0.5 * (piece.u0 + piece.u1), v = 0.5 * (piece.v0 + piece.v1);
+      polish(set, piece.patch, ray, u, v);
+      u = std::clamp(u, 0.0, 1.0);
+      v = std::clamp(v, 0.0, 1.0);
+      if (off_ray(set, piece.patch, ray, u, v) <= 1e-9 * size) add_hit(set, ray, piece.patch, u, v, true, hits);
+      continue;
+    }
+    int dir = detail::longer_direction(piece);
+    if ((dir == 0 ? piece.u1 - piece.u0 : piece.v1 - piece.v0) <= 0x1p-30) dir = 1 - dir;
+    for (detail::NetPiece& half : detail::halves(piece, dir)) stack.push_back(std::move(half));
+  }
+}
+
+// The ray's parameter interval inside a box, or an empty one.
+bool slab(const Eigen::AlignedBox3d& box, const Vec3& origin, const Vec3& inverse, double t0, double t1) {
+  for (int c = 0; c < 3; ++c) {
+    double near = (box.min()[c] - origin[c]) * inverse[c];
+    double far = (box.max()[c] - origin[c]) * inverse[c];
+    if (near > far) std::swap(near, far);
+    if (std::isnan(near) || std::isnan(far)) {
+      // Direction 0 along this axis with the origin on a face: inside iff within the slab.
+      if (origin[c] < box.min()[c] || origin[c] > box.max()[c]) return false;
+      continue;
+    }
+    t0 = std::max(t0, near);
+    t1 = std::min(t1, far);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction, const RayOptions& options) {
+  require_finite(origin, "ray_cast", "origin");
+  require_direction(direction, "ray_cast", "direction");
+  if (!(options.t_min <= options.t_max) || std::isnan(options.t_min))
+    throw InvalidInput(detail::message("ray_cast: t_min (", options.t_min, ") must not exceed t_max (", options.t_max, ")"));
+  Ray ray{origin, direction, Vec3::Zero(), Vec3::Zero(), options.t_min, options.t_max};
+  const Vec3 unit = direction.normalized();
+  const Vec3 helper = std::abs(unit.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+  ray.a = unit.cross(helper).normalized();
+  ray.b = unit.cross(ray.a).normalized();
+  const Vec3 inverse = direction.cwiseInverse();
+  const double size = std::max(bvh.size(), origin.norm() * 1e-3);
+
+  RayHits result;
+  std::vector<HitCandidate> found;
+  std::vector<std::uint32_t> stack{0};
+  while (!stack.empty()) {
+    const std::uint32_t index = stack.back();
+    stack.pop_back();
+    const PatchBvh::Node& node = bvh.nodes()[index];
+    if (!slab(node.box, origin, inverse, options.t_min, options.t_max)) continue;
+    if (!node.leaf()) {
+      stack.push_back(node.second_or_first_piece);
+      stack.push_back(index + 1);
+      continue;
+    }
+    for (std::uint32_t k = 0; k < node.piece_count; ++k) {
+      const std::uint32_t piece = node.second_or_first_piece + k;
+      if (!slab(bvh.piece_boxes()[piece], origin, inverse, options.t_min, options.t_max)) continue;
+      piece_hits(bvh.set(), ray, bvh.pieces()[piece], size, found, result.pieces);
+    }
+  }
+  // One hit per point: the same point found from two pieces or two patches (a shared edge), and
+  // the cluster of tiny pieces around a tangent contact; the one nearest the ray stands for it.
+  std::sort(found.begin(), found.end(), [](const HitCandidate& x, const HitCandidate& y) { return x.hit.t < y.hit.t; });
+  const double same = 1e-9 * size, contact = 1e-4 * size;
+  std::vector<HitCandidate> kept;
+  for (const HitCandidate& c : found) {
+    if (!kept.empty()) {
+      HitCandidate& last = kept.back();
+      const double apart = (c.hit.point - last.hit.point).norm();
+      if (apart <= same || ((c.hit.grazing || last.hit.grazing) && apart <= contact)) {
+        const bool grazing = c.hit.grazing || last.hit.grazing;
+        if (c.off_ray < last.off_ray) last = c;
+        last.hit.grazing = grazing;
+        continue;
+      }
+    }
+    kept.push_back(c);
+  }
+  for (const HitCandidate& c : kept) result.hits.push_back(c.hit);
+  return result;
+}
+
+RayHits ray_cast(const PatchSet& set, const Vec3& origin, const Vec3& direction, const RayOptions& options) {
+  require_finite(origin, "ray_cast", "origin");
+  require_direction(direction, "ray_cast", "direction");
+  return ray_cast(PatchBvh(set), origin, direction, options);
+}
+
+}  // namespace patchwork
