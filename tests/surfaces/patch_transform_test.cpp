@@ -246,26 +246,38 @@ TEST(PatchTransform, MirroredTeapotKeepsItsAdjacency) {
 }
 
 // The unit sphere x^T Q x = 0 (Q = diag(1, 1, 1, -1)) maps to the quadric M^-T Q M^-1; the
-// projective image of each octant evaluates to the mapped points, which lie on it.
+// projective image of each octant evaluates to the mapped points, which lie on it. The image is
+// convex (no weight vanishes: it stays off the plane at infinity) around the image of the centre,
+// so the outward normal n has n . (x - M(0)) > 0: kept with Orientation::keep whatever the sign
+// of det M (M and M with its first row negated, det < 0).
 TEST(PatchTransform, ProjectiveImageOfTheSphereIsTheMappedQuadric) {
   Eigen::Matrix4d M;
   M << 1.0, 0.2, 0.0, 0.5, 0.1, 1.5, -0.3, -1.0, 0.0, 0.4, 0.8, 0.25, 0.1, -0.05, 0.2, 1.0;
   const Eigen::Matrix4d Q = Vec4(1.0, 1.0, 1.0, -1.0).asDiagonal();
-  const Eigen::Matrix4d Minv = M.inverse();
-  const Eigen::Matrix4d quadric = Minv.transpose() * Q * Minv;
   const PatchSet sphere(testing::as_any(testing::unit_sphere_octants()));
-  const TransformedPatchSet mapped = projective_transform(sphere, M, Orientation::keep);
-  EXPECT_EQ(mapped.orientation_reversed, M.determinant() < 0.0);
-  expect_same_adjacency(sphere, mapped.set);
-  for (std::uint32_t p = 0; p < sphere.count(); ++p) {
-    const RationalBezierPatch before = sphere.rational_patch(p);
-    const RationalBezierPatch after = mapped.set.rational_patch(p);
-    for (int a = 0; a <= 4; ++a) {
-      for (int b = 0; b <= 4; ++b) {
-        const Vec3 x = after.evaluate(a / 4.0, b / 4.0);
-        EXPECT_LT((x - apply(M, before.evaluate(a / 4.0, b / 4.0))).norm(), 1e-14 * 16);
-        const Vec4 X(x.x(), x.y(), x.z(), 1.0);
-        EXPECT_LT(std::abs(X.dot(quadric * X)), 1e-13 * quadric.norm() * X.squaredNorm());
+  Eigen::Matrix4d mirrored = M;
+  mirrored.row(0) *= -1.0;
+  ASSERT_GT(M.determinant(), 0.0);
+  for (const Eigen::Matrix4d& map : {M, mirrored}) {
+    const Eigen::Matrix4d Minv = map.inverse();
+    const Eigen::Matrix4d quadric = Minv.transpose() * Q * Minv;
+    const Vec3 inside = apply(map, Vec3::Zero());
+    const TransformedPatchSet mapped = projective_transform(sphere, map, Orientation::keep);
+    EXPECT_EQ(mapped.orientation_reversed, map.determinant() < 0.0);
+    expect_same_adjacency(sphere, mapped.set);
+    for (std::uint32_t p = 0; p < sphere.count(); ++p) {
+      const RationalBezierPatch before = sphere.rational_patch(p);
+      const RationalBezierPatch after = mapped.set.rational_patch(p);
+      for (int a = 0; a <= 4; ++a) {
+        for (int b = 0; b <= 4; ++b) {
+          const Vec3 x = after.evaluate(a / 4.0, b / 4.0);
+          // u reversed where det < 0: the same point is at (1 - u, v) of the original.
+          const double u = mapped.u_reversed ? 1.0 - a / 4.0 : a / 4.0;
+          EXPECT_LT((x - apply(map, before.evaluate(u, b / 4.0))).norm(), 1e-14 * 16);
+          const Vec4 X(x.x(), x.y(), x.z(), 1.0);
+          EXPECT_LT(std::abs(X.dot(quadric * X)), 1e-13 * quadric.norm() * X.squaredNorm());
+          EXPECT_GT(unit_normal(after, a / 4.0, b / 4.0).dot((x - inside).normalized()), 0.1);
+        }
       }
     }
   }

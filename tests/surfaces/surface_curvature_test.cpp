@@ -190,7 +190,7 @@ TEST(SurfaceCurvature, ConeApexIsNotDefined) {
 // curve by k / |q|^2 with |q| up to 1.004 off the axis planes), so the surface is not exactly C^2
 // at the pole: the fit's residual says how far (measured: 3.5e-4 on the lid, where k = 0.3125,
 // and 2.0e-5 on the bottom, where k = 0.0246), and H, K are the revolution's within it
-// (measured: |H + k| = 2.4e-4 and 1.4e-5).
+// (measured: |H + k| = 2.4e-4 and 1.3e-5).
 TEST(SurfaceCurvature, TeapotPolesMatchTheProfileWithinTheResidual) {
   const std::vector<BezierPatch3> teapot = read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt");
   int poles = 0;
