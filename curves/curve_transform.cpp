@@ -30,7 +30,8 @@ std::vector<Point<Dim>> affine_points(const char* function, const std::vector<Po
   std::vector<Point<Dim>> result(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     result[i] = A * points[i] + b;
-    if (!result[i].allFinite()) throw InvalidInput(message(function, ": ", point_name(i, row_length), " maps to a point that is not finite"));
+    if (!result[i].allFinite())
+      throw InvalidInput(message(function, ": ", point_name(i, row_length), " maps to a point that is not finite"));
   }
   return result;
 }
@@ -42,15 +43,17 @@ std::vector<Point<Dim + 1>> projective_points(const char* function, const std::v
   std::vector<Point<Dim + 1>> result(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     result[i] = map * points[i];
-    if (!result[i].allFinite()) throw InvalidInput(message(function, ": ", point_name(i, row_length), " maps to a point that is not finite"));
+    if (!result[i].allFinite())
+      throw InvalidInput(message(function, ": ", point_name(i, row_length), " maps to a point that is not finite"));
   }
   // The sign of control point 0's new weight decides; every other must have it.
   const double first = result.front()[Dim];
   for (std::size_t i = 0; i < result.size(); ++i) {
     const double w = result[i][Dim];
     if (w == 0.0 || (w > 0.0) != (first > 0.0)) {
-      throw InvalidInput(message(function, ": ", point_name(i, row_length), " maps to weight ", w, " (", point_name(0, row_length), " to ", first,
-                                 "): the image may cross the plane at infinity, and has no form with positive weights"));
+      throw InvalidInput(message(
+          function, ": ", point_name(i, row_length), " maps to weight ", w, " (", point_name(0, row_length), " to ",
+          first, "): the image may cross the plane at infinity, and has no form with positive weights"));
     }
   }
   if (first < 0.0) {
@@ -119,8 +122,8 @@ template <int Dim>
 RationalBezierCurve<Dim> projective_transform(const RationalBezierCurve<Dim>& curve, const ProjectiveMap<Dim>& map) {
   check_invertible<Dim>("projective_transform", map);
   const BezierCurve<Dim + 1>& H = curve.homogeneous();
-  return RationalBezierCurve<Dim>(
-      BezierCurve<Dim + 1>(detail::projective_points<Dim>("projective_transform", H.control_points(), map), H.a(), H.b()));
+  return RationalBezierCurve<Dim>(BezierCurve<Dim + 1>(
+      detail::projective_points<Dim>("projective_transform", H.control_points(), map), H.a(), H.b()));
 }
 
 template <int Dim>
@@ -135,8 +138,8 @@ template <int Dim>
 NurbsCurve<Dim> projective_transform(const NurbsCurve<Dim>& curve, const ProjectiveMap<Dim>& map) {
   check_invertible<Dim>("projective_transform", map);
   const BSplineCurve<Dim + 1>& H = curve.homogeneous();
-  return NurbsCurve<Dim>(
-      BSplineCurve<Dim + 1>(H.knot_vector(), detail::projective_points<Dim>("projective_transform", H.control_points(), map)));
+  return NurbsCurve<Dim>(BSplineCurve<Dim + 1>(
+      H.knot_vector(), detail::projective_points<Dim>("projective_transform", H.control_points(), map)));
 }
 
 template <int Dim>
@@ -147,20 +150,20 @@ NurbsCurve<Dim> projective_transform(const BSplineCurve<Dim>& curve, const Proje
       BSplineCurve<Dim + 1>(curve.knot_vector(), detail::projective_points<Dim>("projective_transform", H, map)));
 }
 
-#define PATCHWORK_CURVE_TRANSFORM(Dim)                                                                              \
-  template std::vector<Point<Dim>> detail::affine_points(const char*, const std::vector<Point<Dim>>&,              \
-                                                         const AffineMap<Dim>&, int);                                    \
-  template std::vector<Point<Dim + 1>> detail::projective_points<Dim>(const char*, const std::vector<Point<Dim + 1>>&,  \
-                                                                 const ProjectiveMap<Dim>&, int);                   \
-  template std::vector<Point<Dim + 1>> detail::unit_weight_points(const std::vector<Point<Dim>>&);                 \
-  template ProjectiveMap<Dim> projective_matrix(const AffineMap<Dim>&);                                             \
-  template BezierCurve<Dim> transform(const BezierCurve<Dim>&, const AffineMap<Dim>&);                              \
-  template RationalBezierCurve<Dim> transform(const RationalBezierCurve<Dim>&, const AffineMap<Dim>&);              \
-  template BSplineCurve<Dim> transform(const BSplineCurve<Dim>&, const AffineMap<Dim>&);                            \
-  template NurbsCurve<Dim> transform(const NurbsCurve<Dim>&, const AffineMap<Dim>&);                                \
-  template RationalBezierCurve<Dim> projective_transform(const RationalBezierCurve<Dim>&, const ProjectiveMap<Dim>&); \
-  template RationalBezierCurve<Dim> projective_transform(const BezierCurve<Dim>&, const ProjectiveMap<Dim>&);       \
-  template NurbsCurve<Dim> projective_transform(const NurbsCurve<Dim>&, const ProjectiveMap<Dim>&);                 \
+#define PATCHWORK_CURVE_TRANSFORM(Dim)                                                                                 \
+  template std::vector<Point<Dim>> detail::affine_points(const char*, const std::vector<Point<Dim>>&,                  \
+                                                         const AffineMap<Dim>&, int);                                  \
+  template std::vector<Point<Dim + 1>> detail::projective_points<Dim>(const char*, const std::vector<Point<Dim + 1>>&, \
+                                                                      const ProjectiveMap<Dim>&, int);                 \
+  template std::vector<Point<Dim + 1>> detail::unit_weight_points(const std::vector<Point<Dim>>&);                     \
+  template ProjectiveMap<Dim> projective_matrix(const AffineMap<Dim>&);                                                \
+  template BezierCurve<Dim> transform(const BezierCurve<Dim>&, const AffineMap<Dim>&);                                 \
+  template RationalBezierCurve<Dim> transform(const RationalBezierCurve<Dim>&, const AffineMap<Dim>&);                 \
+  template BSplineCurve<Dim> transform(const BSplineCurve<Dim>&, const AffineMap<Dim>&);                               \
+  template NurbsCurve<Dim> transform(const NurbsCurve<Dim>&, const AffineMap<Dim>&);                                   \
+  template RationalBezierCurve<Dim> projective_transform(const RationalBezierCurve<Dim>&, const ProjectiveMap<Dim>&);  \
+  template RationalBezierCurve<Dim> projective_transform(const BezierCurve<Dim>&, const ProjectiveMap<Dim>&);          \
+  template NurbsCurve<Dim> projective_transform(const NurbsCurve<Dim>&, const ProjectiveMap<Dim>&);                    \
   template NurbsCurve<Dim> projective_transform(const BSplineCurve<Dim>&, const ProjectiveMap<Dim>&);
 
 PATCHWORK_CURVE_TRANSFORM(2)

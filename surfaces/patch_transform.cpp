@@ -82,9 +82,9 @@ NurbsSurface transform(const NurbsSurface& surface, const Eigen::Affine3d& map) 
 RationalBezierPatch projective_transform(const RationalBezierPatch& patch, const Eigen::Matrix4d& map) {
   checked_determinant("projective_transform", map);
   const BezierPatch4& H = patch.homogeneous();
-  return RationalBezierPatch(BezierPatch4(
-      H.degree_u(), H.degree_v(),
-      detail::projective_points<3>("projective_transform", H.control_points(), map, H.degree_u() + 1)));
+  return RationalBezierPatch(
+      BezierPatch4(H.degree_u(), H.degree_v(),
+                   detail::projective_points<3>("projective_transform", H.control_points(), map, H.degree_u() + 1)));
 }
 
 RationalBezierPatch projective_transform(const BezierPatch3& patch, const Eigen::Matrix4d& map) {
@@ -103,8 +103,7 @@ BezierPatch3 reverse_u(const BezierPatch3& patch) {
 
 RationalBezierPatch reverse_u(const RationalBezierPatch& patch) {
   const BezierPatch4& H = patch.homogeneous();
-  return RationalBezierPatch(
-      BezierPatch4(H.degree_u(), H.degree_v(), reversed_rows(H.control_points(), H.degree_u())));
+  return RationalBezierPatch(BezierPatch4(H.degree_u(), H.degree_v(), reversed_rows(H.control_points(), H.degree_u())));
 }
 
 namespace {
@@ -113,10 +112,14 @@ namespace {
 // other way (returned as true).
 std::pair<PatchEdge, bool> edge_after_reversal(PatchEdge edge) {
   switch (edge) {
-    case PatchEdge::u0: return {PatchEdge::u1, false};
-    case PatchEdge::u1: return {PatchEdge::u0, false};
-    case PatchEdge::v0: return {PatchEdge::v0, true};
-    case PatchEdge::v1: return {PatchEdge::v1, true};
+    case PatchEdge::u0:
+      return {PatchEdge::u1, false};
+    case PatchEdge::u1:
+      return {PatchEdge::u0, false};
+    case PatchEdge::v0:
+      return {PatchEdge::v0, true};
+    case PatchEdge::v1:
+      return {PatchEdge::v1, true};
   }
   return {edge, false};
 }
@@ -169,7 +172,8 @@ TransformedPatchSet projective_transform(const PatchSet& set, const Eigen::Matri
       // "projective_transform: control point ..." becomes "projective_transform: patch p, control point ...".
       const std::string what = error.what();
       const std::string prefix = "projective_transform: ";
-      throw InvalidInput(detail::message(prefix, "patch ", p, ", ", what.substr(what.rfind(prefix, 0) == 0 ? prefix.size() : 0)));
+      throw InvalidInput(
+          detail::message(prefix, "patch ", p, ", ", what.substr(what.rfind(prefix, 0) == 0 ? prefix.size() : 0)));
     }
   });
 }

@@ -1,7 +1,6 @@
 #include "surfaces/surface_curvature.h"
 
 #include <Eigen/Dense>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -27,7 +26,8 @@ SurfaceCurvature undefined_curvature() {
 }
 
 // The curvature from the shape operator S written in the orthonormal frame (e1, e2, n).
-SurfaceCurvature from_shape_operator(const Eigen::Matrix2d& S, const Vec3& e1, const Vec3& e2, const Vec3& n, double size) {
+SurfaceCurvature from_shape_operator(const Eigen::Matrix2d& S, const Vec3& e1, const Vec3& e2, const Vec3& n,
+                                     double size) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver;
   solver.computeDirect(0.5 * (S + S.transpose()));
   SurfaceCurvature c;
@@ -94,7 +94,7 @@ SurfaceCurvature pole_curvature(const Derivatives& derivatives, const Vec3& n, c
     kn[k] = c2.dot(n) / c1.squaredNorm();
   }
   const Eigen::JacobiSVD<Eigen::Matrix<double, pole_samples, 3>> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::Vector3d sigma = svd.singularValues();
+  const Eigen::Vector3d& sigma = svd.singularValues();
   if (!(sigma[2] > 1e-6 * sigma[0])) return undefined_curvature();  // the directions do not span the plane
   const Eigen::Vector3d abc = svd.solve(kn);
   Eigen::Matrix2d S;
@@ -195,10 +195,11 @@ SurfaceCurvature curvature(const NurbsSurface& surface, double u, double v) {
   const KnotVector& U = surface.knots_u();
   const KnotVector& V = surface.knots_v();
   std::optional<Pole> pole;
-  if (V.is_clamped() && ((v == V.a() && collapsed(row_v(0), size)) || (v == V.b() && collapsed(row_v(surface.count_v() - 1), size)))) {
+  if (V.is_clamped() &&
+      ((v == V.a() && collapsed(row_v(0), size)) || (v == V.b() && collapsed(row_v(surface.count_v() - 1), size)))) {
     pole = Pole{true, v, U.a(), U.b()};
-  } else if (U.is_clamped() &&
-             ((u == U.a() && collapsed(row_u(0), size)) || (u == U.b() && collapsed(row_u(surface.count_u() - 1), size)))) {
+  } else if (U.is_clamped() && ((u == U.a() && collapsed(row_u(0), size)) ||
+                                (u == U.b() && collapsed(row_u(surface.count_u() - 1), size)))) {
     pole = Pole{false, u, V.a(), V.b()};
   }
   return curvature_of([&](double s, double t) { return partial_derivatives(surface, s, t, 2); },

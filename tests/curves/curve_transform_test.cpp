@@ -83,7 +83,9 @@ RC_GTEST_PROP(CurveTransform, AffineMapCommutesWithEvaluationOfBezierCurves, ())
 // A P + b exactly, whatever the order of the operations.
 RC_GTEST_PROP(CurveTransform, ControlPointsAreExactlyTheAffineImage, ()) {
   const int n = *rc::gen::inRange(0, 8);
-  const auto dyadic = [](int range, double unit) { return rc::gen::map(rc::gen::inRange(-range, range + 1), [unit](int k) { return k * unit; }); };
+  const auto dyadic = [](int range, double unit) {
+    return rc::gen::map(rc::gen::inRange(-range, range + 1), [unit](int k) { return k * unit; });
+  };
   std::vector<Vec3> P;
   for (int i = 0; i <= n; ++i) P.emplace_back(*dyadic(640, 1.0 / 64), *dyadic(640, 1.0 / 64), *dyadic(640, 1.0 / 64));
   Eigen::Affine3d map = Eigen::Affine3d::Identity();
@@ -118,7 +120,8 @@ TEST(CurveTransform, DyadicTranslationIsBitExact) {
 
 RC_GTEST_PROP(CurveTransform, RationalCurvesKeepTheirWeightsAndCommute, ()) {
   const BezierCurve3 net = *curve_gen::bezier_curve<3>(0, 8);
-  const auto weights = *rc::gen::container<std::vector<double>>(net.control_points().size(), curve_gen::coordinate(0.25, 4.0));
+  const auto weights =
+      *rc::gen::container<std::vector<double>>(net.control_points().size(), curve_gen::coordinate(0.25, 4.0));
   const RationalBezierCurve3 curve(net.control_points(), weights);
   const Eigen::Affine3d map = *random_affine<3>();
   const RationalBezierCurve3 image = transform(curve, map);
@@ -168,8 +171,10 @@ RC_GTEST_PROP(CurveTransform, ProjectiveMapCommutesWithEvaluation, ()) {
   const double scale = 4.0 * image_scale(AffineMap<3>(M.topLeftCorner<3, 4>()), {Vec3::Constant(10.0)});
   for (int k = 0; k <= 16; ++k) {
     const double t = k / 16.0;
-    RC_ASSERT((polynomial_image.evaluate(t) - apply<3>(M, polynomial.evaluate(t))).cwiseAbs().maxCoeff() <= 256 * eps * scale);
-    RC_ASSERT((rational_image.evaluate(t) - apply<3>(M, rational.evaluate(t))).cwiseAbs().maxCoeff() <= 1024 * eps * scale);
+    RC_ASSERT((polynomial_image.evaluate(t) - apply<3>(M, polynomial.evaluate(t))).cwiseAbs().maxCoeff() <=
+              256 * eps * scale);
+    RC_ASSERT((rational_image.evaluate(t) - apply<3>(M, rational.evaluate(t))).cwiseAbs().maxCoeff() <=
+              1024 * eps * scale);
     const double u = nurbs.a() + (nurbs.b() - nurbs.a()) * t;
     RC_ASSERT((nurbs_image.evaluate(u) - apply<3>(M, nurbs.evaluate(u))).cwiseAbs().maxCoeff() <= 1024 * eps * scale);
   }

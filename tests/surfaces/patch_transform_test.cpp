@@ -75,7 +75,8 @@ RC_GTEST_PROP(PatchTransform, AffineMapCommutesWithEvaluation, ()) {
     for (int b = 0; b <= 4; ++b) {
       const double u = a / 4.0, v = b / 4.0;
       RC_ASSERT((image.evaluate(u, v) - map * patch.evaluate(u, v)).cwiseAbs().maxCoeff() <= bound);
-      RC_ASSERT((rational_image.evaluate(u, v) - map * rational.evaluate(u, v)).cwiseAbs().maxCoeff() <= rational_bound);
+      RC_ASSERT((rational_image.evaluate(u, v) - map * rational.evaluate(u, v)).cwiseAbs().maxCoeff() <=
+                rational_bound);
       const double s = nurbs.knots_u().a() + (nurbs.knots_u().b() - nurbs.knots_u().a()) * u;
       const double t = nurbs.knots_v().a() + (nurbs.knots_v().b() - nurbs.knots_v().a()) * v;
       RC_ASSERT((nurbs_image.evaluate(s, t) - map * nurbs.evaluate(s, t)).cwiseAbs().maxCoeff() <= rational_bound);
@@ -167,14 +168,15 @@ TEST(PatchTransform, MirroredSphereIsInwardUnlessOrientationIsKept) {
         for (const double v : {0.0, 0.4, 1.0}) {
           const Vec3 x = patch.evaluate(u, v);
           EXPECT_NEAR((x - centre).norm(), 1.0, 1e-15 * 8);
-          EXPECT_LT((unit_normal(patch, u, v) - side * (x - centre)).norm(), 1e-14) << "patch " << p << " at " << u << ", " << v;
+          EXPECT_LT((unit_normal(patch, u, v) - side * (x - centre)).norm(), 1e-14)
+              << "patch " << p << " at " << u << ", " << v;
         }
       }
     }
   }
   // A rotation keeps the orientation: nothing is reversed.
-  const TransformedPatchSet turned = transform(sphere, Eigen::Affine3d(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())),
-                                               Orientation::keep);
+  const TransformedPatchSet turned =
+      transform(sphere, Eigen::Affine3d(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())), Orientation::keep);
   EXPECT_FALSE(turned.orientation_reversed);
   EXPECT_FALSE(turned.u_reversed);
   expect_same_adjacency(sphere, turned.set);

@@ -135,8 +135,7 @@ TEST(SurfaceCurvature, TorusMatchesTheClosedForms) {
 }
 
 TEST(SurfaceCurvature, PlaneIsFlatAndUmbilic) {
-  const BezierPatch3 plane =
-      testing::bilinear(Vec3(0, 0, 1), Vec3(2, 1, 1), Vec3(-1, 3, 1), Vec3(1.5, 4, 1));
+  const BezierPatch3 plane = testing::bilinear(Vec3(0, 0, 1), Vec3(2, 1, 1), Vec3(-1, 3, 1), Vec3(1.5, 4, 1));
   for (const double u : spread(0.0, 1.0, 5)) {
     for (const double v : spread(0.0, 1.0, 5)) {
       const SurfaceCurvature k = curvature(plane, u, v);
@@ -181,7 +180,6 @@ TEST(SurfaceCurvature, ConeApexIsNotDefined) {
   ASSERT_TRUE(side.defined);
   EXPECT_NEAR(side.gaussian, 0.0, 1e-13);
 }
-
 
 // The teapot's lid and bottom are near-surfaces of revolution with poles (row v0 of patches 20-23
 // and 28-31 collapsed). On a surface of revolution the pole is umbilic: K = k^2, H = -k (outward
