@@ -12,6 +12,7 @@
 #include "core/errors.h"
 #include "tests/curves/bspline_generators.h"
 #include "tests/curves/curve_generators.h"
+#include "tests/support/exact_rational.h"
 
 namespace patchwork::curve_transform_test {
 namespace {
@@ -101,6 +102,31 @@ RC_GTEST_PROP(CurveTransform, ControlPointsAreExactlyTheAffineImage, ()) {
       double expected = map.translation()[r];
       for (int c = 0; c < 3; ++c) expected += map.linear()(r, c) * P[i][c];
       RC_ASSERT(image.control_points()[i][r] == expected);
+    }
+  }
+}
+
+// On any doubles each image coordinate sum_k a_rk P_k + b_r rounds at most Dim + 1 times per
+// term (one product, Dim additions, in whatever order), so it is within
+// gamma_(Dim+1) (sum_k |a_rk P_k| + |b_r|) of the exact value (Higham, Accuracy and Stability,
+// 3.1), computed here in rationals.
+RC_GTEST_PROP(CurveTransform, ControlPointsAreWithinTheDotProductBound, ()) {
+  const BezierCurve3 curve = *curve_gen::bezier_curve<3>(0, 6);
+  const Eigen::Affine3d map = *random_affine<3>();
+  const BezierCurve3 image = transform(curve, map);
+  const mpq_class gamma = exact::gamma(4);
+  for (std::size_t i = 0; i < curve.control_points().size(); ++i) {
+    const Vec3& P = curve.control_points()[i];
+    for (int r = 0; r < 3; ++r) {
+      mpq_class exact_value(map.translation()[r]);
+      mpq_class magnitude(std::abs(map.translation()[r]));
+      for (int c = 0; c < 3; ++c) {
+        const mpq_class term = mpq_class(map.linear()(r, c)) * mpq_class(P[c]);
+        exact_value += term;
+        magnitude += abs(term);
+      }
+      const mpq_class error = abs(mpq_class(image.control_points()[i][r]) - exact_value);
+      RC_ASSERT(error <= gamma * magnitude);
     }
   }
 }
