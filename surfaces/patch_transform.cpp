@@ -127,9 +127,10 @@ std::pair<PatchEdge, bool> edge_after_reversal(PatchEdge edge) {
 // The set of the mapped patches (`map_patch` of each, u reversed when asked), its shared edges
 // passed on as known joins.
 template <class MapPatch>
-TransformedPatchSet transform_set(const PatchSet& set, double det, Orientation orientation, MapPatch map_patch) {
+TransformedPatchSet transform_set(const PatchSet& set, double det, TransformOrientation orientation,
+                                  MapPatch map_patch) {
   const bool reversed = det < 0.0;
-  const bool reverse = reversed && orientation == Orientation::keep;
+  const bool reverse = reversed && orientation == TransformOrientation::keep;
   std::vector<AnyBezierPatch> patches;
   patches.reserve(set.count());
   for (std::uint32_t p = 0; p < set.count(); ++p) {
@@ -156,14 +157,15 @@ TransformedPatchSet transform_set(const PatchSet& set, double det, Orientation o
 
 }  // namespace
 
-TransformedPatchSet transform(const PatchSet& set, const Eigen::Affine3d& map, Orientation orientation) {
+TransformedPatchSet transform(const PatchSet& set, const Eigen::Affine3d& map, TransformOrientation orientation) {
   const double det = checked_determinant("transform", map);
   return transform_set(set, det, orientation, [&](const AnyBezierPatch& patch, std::uint32_t) {
     return std::visit([&](const auto& kind) { return AnyBezierPatch(transform(kind, map)); }, patch);
   });
 }
 
-TransformedPatchSet projective_transform(const PatchSet& set, const Eigen::Matrix4d& map, Orientation orientation) {
+TransformedPatchSet projective_transform(const PatchSet& set, const Eigen::Matrix4d& map,
+                                         TransformOrientation orientation) {
   const double det = checked_determinant("projective_transform", map);
   return transform_set(set, det, orientation, [&](const AnyBezierPatch& patch, std::uint32_t p) {
     try {

@@ -17,9 +17,9 @@
 // the Jacobian determinant det(M) / (c.x + d)^4, so det(M) < 0 reverses the orientation (the sign
 // of c.x + d does not matter). A singular map (det = 0) flattens the surface: InvalidInput.
 //
-// A patch set's transform reports orientation_reversed = (det < 0), and with Orientation::keep
-// reverses every patch's u direction as well, F''(u, v) = F'(1 - u, v) (P''_ij = P'_(n-i)j), so
-// that the normals keep their side. Reversing u in every patch keeps shared edges consistent:
+// A patch set's transform reports orientation_reversed = (det < 0), and with
+// TransformOrientation::keep reverses every patch's u direction as well, F''(u, v) = F'(1 - u, v)
+// (P''_ij = P'_(n-i)j), so that the normals keep their side. Reversing u in every patch keeps shared edges consistent:
 // edges u0 and u1 exchange their names, and v0, v1 run the other way, which a shared edge's
 // `reversed` flag records, so each pair still walks its edge in opposite directions.
 //
@@ -68,7 +68,7 @@ BezierPatch3 reverse_u(const BezierPatch3& patch);
 RationalBezierPatch reverse_u(const RationalBezierPatch& patch);
 
 /// What a patch set's transform does with the orientation of a mirror (det < 0).
-enum class Orientation {
+enum class TransformOrientation {
   /// The patches are the mapped patches; a mirror turns the normals to the other side.
   follow_map,
   /// Where the map is a mirror, every patch's u is reversed too, so the normals keep their side.
@@ -80,8 +80,8 @@ struct TransformedPatchSet {
   PatchSet set;
   /// det < 0: the map alone turns F_u x F_v to the other side of the surface.
   bool orientation_reversed;
-  /// Every patch's u was reversed (orientation_reversed and Orientation::keep), so patch p's
-  /// (u, v) is the mapped patch's (1 - u, v) and its edges u0 and u1 are exchanged.
+  /// Every patch's u was reversed (orientation_reversed and TransformOrientation::keep), so
+  /// patch p's (u, v) is the mapped patch's (1 - u, v) and its edges u0 and u1 are exchanged.
   bool u_reversed;
 };
 
@@ -89,10 +89,10 @@ struct TransformedPatchSet {
 /// \throws InvalidInput as for a patch, or if the mapped shared edges no longer agree within
 ///         twice the set's relative tolerance of the new size (a map far from conformal).
 TransformedPatchSet transform(const PatchSet& set, const Eigen::Affine3d& map,
-                              Orientation orientation = Orientation::follow_map);
+                              TransformOrientation orientation = TransformOrientation::follow_map);
 /// Every patch mapped projectively (polynomial patches become rational), the shared edges kept.
 /// \throws InvalidInput as for a patch (naming the patch), or as the affine form.
 TransformedPatchSet projective_transform(const PatchSet& set, const Eigen::Matrix4d& map,
-                                         Orientation orientation = Orientation::follow_map);
+                                         TransformOrientation orientation = TransformOrientation::follow_map);
 
 }  // namespace patchwork

@@ -154,14 +154,14 @@ TEST(PatchTransform, MirroredSphereIsInwardUnlessOrientationIsKept) {
   mirror.linear()(0, 0) = -1.0;
   mirror.translation() = Vec3(2.0, 0.5, -0.25);
   const Vec3 centre = mirror * Vec3::Zero();
-  for (const Orientation orientation : {Orientation::follow_map, Orientation::keep}) {
+  for (const TransformOrientation orientation : {TransformOrientation::follow_map, TransformOrientation::keep}) {
     const TransformedPatchSet mapped = transform(sphere, mirror, orientation);
     EXPECT_TRUE(mapped.orientation_reversed);
-    EXPECT_EQ(mapped.u_reversed, orientation == Orientation::keep);
+    EXPECT_EQ(mapped.u_reversed, orientation == TransformOrientation::keep);
     expect_same_adjacency(sphere, mapped.set);
     EXPECT_TRUE(report(mapped.set).consistently_oriented);
     EXPECT_TRUE(report(mapped.set).closed);
-    const double side = orientation == Orientation::keep ? 1.0 : -1.0;
+    const double side = orientation == TransformOrientation::keep ? 1.0 : -1.0;
     for (std::uint32_t p = 0; p < mapped.set.count(); ++p) {
       const RationalBezierPatch patch = mapped.set.rational_patch(p);
       for (const double u : {0.0, 0.3, 0.5, 1.0}) {
@@ -175,8 +175,8 @@ TEST(PatchTransform, MirroredSphereIsInwardUnlessOrientationIsKept) {
     }
   }
   // A rotation keeps the orientation: nothing is reversed.
-  const TransformedPatchSet turned =
-      transform(sphere, Eigen::Affine3d(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())), Orientation::keep);
+  const TransformedPatchSet turned = transform(
+      sphere, Eigen::Affine3d(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())), TransformOrientation::keep);
   EXPECT_FALSE(turned.orientation_reversed);
   EXPECT_FALSE(turned.u_reversed);
   expect_same_adjacency(sphere, turned.set);
@@ -220,7 +220,7 @@ TEST(PatchTransform, KnownJoinsAreKept) {
   Eigen::Affine3d mirror = Eigen::Affine3d::Identity();
   mirror.linear() = Vec3(1.0, -2.0, 0.5).asDiagonal();
   for (const PatchSet* set : {&known, &torus}) {
-    for (const Orientation orientation : {Orientation::follow_map, Orientation::keep}) {
+    for (const TransformOrientation orientation : {TransformOrientation::follow_map, TransformOrientation::keep}) {
       const TransformedPatchSet mapped = transform(*set, mirror, orientation);
       expect_same_adjacency(*set, mapped.set);
       expect_same_joins(*set, mapped.set, mapped.u_reversed);
@@ -234,15 +234,15 @@ TEST(PatchTransform, MirroredTeapotKeepsItsAdjacency) {
   const PatchSet teapot(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"));
   Eigen::Affine3d mirror = Eigen::Affine3d::Identity();
   mirror.linear()(1, 1) = -1.0;
-  for (const Orientation orientation : {Orientation::follow_map, Orientation::keep}) {
+  for (const TransformOrientation orientation : {TransformOrientation::follow_map, TransformOrientation::keep}) {
     const TransformedPatchSet mapped = transform(teapot, mirror, orientation);
     expect_same_adjacency(teapot, mapped.set);
     EXPECT_EQ(mapped.set.rational_count(), 0u);
-    // Patch 0's normal at its centre: turned by the mirror, kept with Orientation::keep.
+    // Patch 0's normal at its centre: turned by the mirror, kept with TransformOrientation::keep.
     const BezierPatch3& before = teapot.patches()[0];
     const BezierPatch3& after = mapped.set.patches()[0];
     const Vec3 expected = mirror.linear() * unit_normal(before, 0.5, 0.5);
-    const double side = orientation == Orientation::keep ? 1.0 : -1.0;
+    const double side = orientation == TransformOrientation::keep ? 1.0 : -1.0;
     EXPECT_LT((unit_normal(after, 0.5, 0.5) - side * expected).norm(), 1e-14);
   }
 }
@@ -250,7 +250,7 @@ TEST(PatchTransform, MirroredTeapotKeepsItsAdjacency) {
 // The unit sphere x^T Q x = 0 (Q = diag(1, 1, 1, -1)) maps to the quadric M^-T Q M^-1; the
 // projective image of each octant evaluates to the mapped points, which lie on it. The image is
 // convex (no weight vanishes: it stays off the plane at infinity) around the image of the centre,
-// so the outward normal n has n . (x - M(0)) > 0: kept with Orientation::keep whatever the sign
+// so the outward normal n has n . (x - M(0)) > 0: kept with TransformOrientation::keep whatever the sign
 // of det M (M and M with its first row negated, det < 0).
 TEST(PatchTransform, ProjectiveImageOfTheSphereIsTheMappedQuadric) {
   Eigen::Matrix4d M;
@@ -264,7 +264,7 @@ TEST(PatchTransform, ProjectiveImageOfTheSphereIsTheMappedQuadric) {
     const Eigen::Matrix4d Minv = map.inverse();
     const Eigen::Matrix4d quadric = Minv.transpose() * Q * Minv;
     const Vec3 inside = apply(map, Vec3::Zero());
-    const TransformedPatchSet mapped = projective_transform(sphere, map, Orientation::keep);
+    const TransformedPatchSet mapped = projective_transform(sphere, map, TransformOrientation::keep);
     EXPECT_EQ(mapped.orientation_reversed, map.determinant() < 0.0);
     expect_same_adjacency(sphere, mapped.set);
     for (std::uint32_t p = 0; p < sphere.count(); ++p) {
