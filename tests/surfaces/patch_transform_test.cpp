@@ -87,6 +87,34 @@ RC_GTEST_PROP(PatchTransform, AffineMapCommutesWithEvaluation, ()) {
   }
 }
 
+// Projective maps [A b; c^T 1] with |c_i| <= 1/64 keep the new weights w (c.P + 1) positive
+// on points within [-10, 10]^3 (c.P + 1 >= 34/64), and commute with evaluation: the image
+// evaluates to the mapped points, for polynomial (then rational), rational and NURBS surfaces.
+RC_GTEST_PROP(PatchTransform, ProjectiveMapCommutesWithEvaluation, ()) {
+  const BezierPatch3 patch = *testing::random_patch(0, 4);
+  const RationalBezierPatch rational = *random_rational_patch();
+  const NurbsSurface nurbs = *nurbs_gen::nurbs_surface(true);
+  Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+  M.topRows<3>() = (*random_affine()).matrix().topRows<3>();
+  for (int c = 0; c < 3; ++c) M(3, c) = *testing::coordinate(-1.0 / 64, 1.0 / 64);
+  const RationalBezierPatch image = projective_transform(patch, M);
+  const RationalBezierPatch rational_image = projective_transform(rational, M);
+  const NurbsSurface nurbs_image = projective_transform(nurbs, M);
+  RC_ASSERT(nurbs_image.knots_u() == nurbs.knots_u());
+  // The images are at most 64/34 times the affine scale; the quotients cost a few ulps more.
+  const double bound = 2.0 * 16.0 * 4.0 * (8 + 8 + 6) * eps * image_scale(Eigen::Affine3d(M.topRows<3>()));
+  for (int a = 0; a <= 4; ++a) {
+    for (int b = 0; b <= 4; ++b) {
+      const double u = a / 4.0, v = b / 4.0;
+      RC_ASSERT((image.evaluate(u, v) - apply(M, patch.evaluate(u, v))).cwiseAbs().maxCoeff() <= bound);
+      RC_ASSERT((rational_image.evaluate(u, v) - apply(M, rational.evaluate(u, v))).cwiseAbs().maxCoeff() <= bound);
+      const double s = nurbs.knots_u().a() + (nurbs.knots_u().b() - nurbs.knots_u().a()) * u;
+      const double t = nurbs.knots_v().a() + (nurbs.knots_v().b() - nurbs.knots_v().a()) * v;
+      RC_ASSERT((nurbs_image.evaluate(s, t) - apply(M, nurbs.evaluate(s, t))).cwiseAbs().maxCoeff() <= bound);
+    }
+  }
+}
+
 // Dyadic points and maps: every product and sum is exact, so P'_ij = A P_ij + b bit for bit.
 RC_GTEST_PROP(PatchTransform, ControlPointsAreExactlyTheAffineImage, ()) {
   const auto dyadic = [](int range, double unit) {
