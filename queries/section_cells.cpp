@@ -249,20 +249,21 @@ std::array<std::tuple<bool, double, double, double>, 4> sides_of(const Cell& cel
            {false, cell.u0, cell.v0, cell.v1}}};
 }
 
-// The crossings on a cell's boundary; a side on a collapsed edge in the plane (a pole on it) adds
-// the pole once.
+// The crossings on a cell's boundary. A side on a collapsed edge in the plane (a pole) has no
+// isolated roots: the pole is a crossing when the others are odd in number (the curve ends there).
 std::vector<Crossing> cell_crossings(PatchSection& patch, const Cell& cell, SectionState& state, bool& pole) {
   std::vector<Crossing> result;
   pole = false;
+  Vec2 pole_uv = Vec2::Zero();
+  int pole_axis = 0;  // the coordinate that is constant along the pole's side
   for (const auto& [along_u, at, from, to] : sides_of(cell)) {
     const LineRoots& line = roots_on(patch, along_u, at, state);
     const int edge = edge_of_line(along_u, at);
     if (line.zero && edge >= 0 && patch.edges[static_cast<std::size_t>(edge)].collapsed) {
-      if (!pole) {
-        const double mid = 0.5 * (from + to);
-        result.push_back({along_u ? Vec2(mid, at) : Vec2(at, mid), add_node(state, patch, along_u ? Vec2(mid, at) : Vec2(at, mid))});
-      }
       pole = true;
+      const double mid = 0.5 * (from + to);
+      pole_uv = along_u ? Vec2(mid, at) : Vec2(at, mid);
+      pole_axis = along_u ? 1 : 0;
       continue;
     }
     for (std::size_t k = 0; k < line.t.size(); ++k) {
@@ -279,6 +280,11 @@ std::vector<Crossing> cell_crossings(PatchSection& patch, const Cell& cell, Sect
       }
     }
   }
+  if (!pole) return result;
+  // The other sides' lines end at the pole, where their roots (if any) are the pole again.
+  const int axis = pole_axis;
+  std::erase_if(result, [&](const Crossing& c) { return std::abs(c.uv[axis] - pole_uv[axis]) <= same_crossing; });
+  if (result.size() % 2 == 1) result.push_back({pole_uv, add_node(state, patch, pole_uv)});
   return result;
 }
 

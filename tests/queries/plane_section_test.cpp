@@ -88,7 +88,8 @@ TEST(PlaneSection, SphereCutAtDistanceIsItsCircle) {
   const double r = 1.7;
   const PatchSet set = set_of(nurbs_sphere(centre, r));
   const Vec3 n = Vec3(0.3, -0.2, 0.9).normalized();
-  for (const double d : {0.0, 0.61, -1.2, 1.65}) {
+  // r - 1e-5: a loop of radius 0.0058 inside one patch.
+  for (const double d : {0.0, 0.61, -1.2, 1.65, r - 1e-5}) {
     for (const double tolerance : {1e-2, 1e-6}) {
       SCOPED_TRACE(::testing::Message() << "d = " << d << ", tolerance " << tolerance);
       const Vec3 p = centre + d * n;
@@ -131,7 +132,10 @@ TEST(PlaneSection, ObliqueCylinderCutIsAnEllipse) {
 TEST(PlaneSection, TorusCutThroughItsAxisIsTwoCircles) {
   const double R = 2.0, r = 0.5;
   const PatchSet set = set_of(nurbs_torus(Vec3::Zero(), R, r));
-  const double a = 0.3;
+  // At 0.3 radians the plane crosses the patches; at 0 and pi / 2 it holds patch edges (the
+  // section runs along them, the seam at angle 0 among them).
+  for (const double a : {0.3, 0.0, pi / 2}) {
+  SCOPED_TRACE(::testing::Message() << "angle " << a);
   const Vec3 n(std::cos(a), std::sin(a), 0.0), along(-std::sin(a), std::cos(a), 0.0);
   const PlaneSection section = plane_section(set, Vec3::Zero(), n, 1e-5);
   ASSERT_EQ(section.polylines.size(), 2U);
@@ -146,6 +150,19 @@ TEST(PlaneSection, TorusCutThroughItsAxisIsTwoCircles) {
     expect_circle(line, side * R * along, n, r, section.error_bound);
   }
   EXPECT_EQ(sides[0] + sides[1], 0.0);  // one circle on each side of the axis
+  }
+}
+
+TEST(PlaneSection, PlaneThroughAPoleCrossesIt) {
+  const PatchSet set = set_of(nurbs_sphere(Vec3::Zero(), 1.0));
+  const Vec3 pole(0, 0, 1), n = Vec3(1, 0.3, 1).normalized();
+  const PlaneSection section = plane_section(set, pole, n, 1e-4);
+  ASSERT_EQ(section.polylines.size(), 1U);
+  EXPECT_TRUE(section.tangent_points.empty());
+  EXPECT_EQ(section.uncertified_pieces, 0U);
+  expect_circle(section.polylines[0], n.dot(pole) * n, n, std::sqrt(1.0 - std::pow(n.dot(pole), 2)), section.error_bound);
+  const auto& vertices = section.polylines[0].vertices;
+  EXPECT_TRUE(std::any_of(vertices.begin(), vertices.end(), [&](const SectionVertex& v) { return (v.point - pole).norm() <= 1e-12; }));
 }
 
 TEST(PlaneSection, TangentPlaneGivesAFlaggedPoint) {
