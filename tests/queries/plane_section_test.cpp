@@ -104,6 +104,38 @@ TEST(PlaneSection, SphereCutAtDistanceIsItsCircle) {
   }
 }
 
+// The patch with u reversed (P'_ij = P_(n-i)j): its edges along u run the other way.
+RationalBezierPatch reversed_u(const RationalBezierPatch& patch) {
+  const int n = patch.degree_u(), m = patch.degree_v();
+  std::vector<Vec3> points;
+  std::vector<double> weights;
+  for (int j = 0; j <= m; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      points.push_back(patch.control_point(n - i, j));
+      weights.push_back(patch.weight(n - i, j));
+    }
+  }
+  return RationalBezierPatch(n, m, points, weights);
+}
+
+TEST(PlaneSection, EdgesSharedInOppositeDirectionsAreCrossedOnce) {
+  // The sphere with its northern patches' u reversed: the equator's shared edges run opposite
+  // ways in their two patches, and the crossing found on one is mapped to the other's parameter.
+  std::vector<AnyBezierPatch> patches = bezier_patches(nurbs_sphere(Vec3::Zero(), 1.0)).patches;
+  for (std::size_t k = patches.size() / 2; k < patches.size(); ++k)
+    patches[k] = reversed_u(std::get<RationalBezierPatch>(patches[k]));
+  const PatchSet set(patches);
+  ASSERT_TRUE(std::any_of(set.shared_edges().begin(), set.shared_edges().end(), [](const SharedEdge& e) { return e.reversed; }));
+  const Vec3 n = Vec3(1.0, 0.4, 0.3).normalized();
+  for (const double d : {0.0, 0.35}) {
+    const PlaneSection section = plane_section(set, d * n, n, 1e-5);
+    ASSERT_EQ(section.polylines.size(), 1U);
+    EXPECT_EQ(section.uncertified_pieces, 0U);
+    expect_circle(section.polylines[0], d * n, n, std::sqrt(1.0 - d * d), section.error_bound);
+    expect_vertices_exact(set, section, d * n, n);
+  }
+}
+
 TEST(PlaneSection, ObliqueCylinderCutIsAnEllipse) {
   const PatchSet set = set_of(nurbs_cylinder(Vec3::Zero(), 1.0, 2.0));
   const Vec3 p(0, 0, 1), normal(0.3, 0.2, 1.0);  // z = 1 - 0.3 x - 0.2 y
