@@ -293,6 +293,27 @@ MeshSlice slice_mesh(const RenderMesh& mesh, double height) {
   return result;
 }
 
+// An open polyline ends only where the set has an open edge: both its end vertices lie on an
+// open edge of their patch.
+void expect_open_ends_on_open_edges(const PatchSet& set, const PlaneSection& section) {
+  for (const SectionPolyline& line : section.polylines) {
+    if (line.closed) continue;
+    for (const SectionVertex* end : {&line.vertices.front(), &line.vertices.back()}) {
+      const bool on_open_edge = std::any_of(set.open_edges().begin(), set.open_edges().end(), [&](const EdgeRef& e) {
+        if (e.patch != end->patch) return false;
+        switch (e.edge) {
+          case PatchEdge::v0: return end->uv.y() == 0.0;
+          case PatchEdge::u1: return end->uv.x() == 1.0;
+          case PatchEdge::v1: return end->uv.y() == 1.0;
+          case PatchEdge::u0: return end->uv.x() == 0.0;
+        }
+        return false;
+      });
+      EXPECT_TRUE(on_open_edge) << "patch " << end->patch << " at " << end->uv.transpose();
+    }
+  }
+}
+
 TEST(PlaneSection, TeapotSlicesAgreeWithItsTessellation) {
   const PatchSet set(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"));
   TessellationOptions options;
@@ -316,7 +337,26 @@ TEST(PlaneSection, TeapotSlicesAgreeWithItsTessellation) {
     EXPECT_EQ(closed, slice.loops);
     EXPECT_EQ(section.polylines.size() - closed, slice.open);
     EXPECT_NEAR(total, slice.length, 1e-3 * slice.length);
+    expect_open_ends_on_open_edges(set, section);
   }
+}
+
+// Random planes through the teapot's box: certified, on the plane, open only at open edges.
+RC_GTEST_PROP(PlaneSection, TeapotRandomPlanesAreCertified, ()) {
+  static const PatchSet set(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"));
+  const auto coordinate = [] { return *rc::gen::inRange(-1000, 1001) / 1000.0; };
+  const Vec3 p(3.0 * coordinate(), 2.0 * coordinate(), 1.6 + 1.6 * coordinate());
+  const Vec3 normal(coordinate(), coordinate(), coordinate());
+  RC_PRE(normal.norm() > 0.1);
+  const double tolerance = 1e-4;
+  const PlaneSection section = plane_section(set, p, normal, tolerance);
+  RC_ASSERT(section.uncertified_pieces == 0U);
+  RC_ASSERT(section.error_bound <= tolerance);
+  for (const SectionPolyline& line : section.polylines) {
+    RC_ASSERT(line.vertices.size() >= 2U);
+    for (const SectionVertex& v : line.vertices) RC_ASSERT(std::abs(normal.normalized().dot(v.point - p)) <= 1e-12 * set.size());
+  }
+  expect_open_ends_on_open_edges(set, section);
 }
 
 // A plane through a point of the torus, not tangent there, has a section through that point.
