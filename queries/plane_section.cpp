@@ -5,7 +5,6 @@
 #include <limits>
 #include <numeric>
 
-#include "core/assert.h"
 #include "queries/query_arguments.h"
 #include "queries/section_cells.h"
 

@@ -6,7 +6,6 @@
 #include <optional>
 #include <variant>
 
-#include "core/assert.h"
 #include "curves/bernstein.h"
 #include "surfaces/patch_flatness.h"
 #include "surfaces/rational_bounds.h"
@@ -21,8 +20,16 @@ constexpr int max_depth = 50;
 // Two crossings of one cell closer than this in (u, v) are one (a root at a cell corner is found
 // on both lines through it).
 constexpr double same_crossing = 1e-9;
-// A cell whose box is at most this fraction of the tolerance is not split again.
-constexpr double smallest_cell = 1e-3;
+// Cells with other than two crossings are split down to this fraction of the tolerance.
+constexpr double finest_cell = 1e-3;
+// ... or until f's coefficients on the cell are at most this many times the rounding level.
+constexpr double noise = 1e4;
+// Roots this close to an end of a line where f vanishes may be that end (a double root there is
+// found within about 1e-8, a triple one within 1e-5).
+constexpr double end_root_snap = 1e-4;
+// The search of one patch examines at most this many cells; the cells left are uncertified (a
+// plane tangent along a curve inside a patch, which the search cannot resolve into arcs).
+constexpr std::size_t max_cells = std::size_t{1} << 16;
 
 struct Cell {
   double u0, u1, v0, v1;
@@ -432,7 +439,20 @@ LineRoots line_roots(const PatchSection& patch, bool along_u, double at, Section
   const std::vector<double> line = iso_line(patch.f, along_u, at);
   result.zero = std::all_of(line.begin(), line.end(), [&](double c) { return std::abs(c) <= patch.zero; });
   if (result.zero) return result;
-  result.t = bernstein_roots(line);
+  // An end where f vanishes (a cell corner on the curve, a saddle at a patch corner) is a root
+  // exactly: bernstein_roots puts a multiple root only near it (rounding^(1/multiplicity)).
+  const bool zero_start = std::abs(line.front()) <= patch.zero, zero_end = std::abs(line.back()) <= patch.zero;
+  // A root near such an end is that end's when f is rounding noise between them (a simple root
+  // near the end, where f grows between, is kept).
+  const auto at_end = [&](double t, double end) {
+    return std::abs(t - end) <= end_root_snap && std::abs(bernstein_evaluate(line, 0.5 * (t + end))) <= 16.0 * patch.zero;
+  };
+  for (const double t : bernstein_roots(line)) {
+    if ((zero_start && at_end(t, 0.0)) || (zero_end && at_end(t, 1.0))) continue;
+    result.t.push_back(t);
+  }
+  if (zero_start) result.t.insert(result.t.begin(), 0.0);
+  if (zero_end) result.t.push_back(1.0);
   for (const double t : result.t) result.nodes.push_back(add_node(state, patch, along_u ? Vec2(t, at) : Vec2(at, t)));
   return result;
 }
@@ -442,9 +462,15 @@ void search_patch(PatchSection& patch, SectionState& state) {
   for (const double c : patch.f.c) largest = std::max(largest, std::abs(c));
   const double clear = 1e-9 * largest;  // split lines keep this far (in f) from the curve at their ends
   std::vector<Cell> stack{{0.0, 1.0, 0.0, 1.0, 0}};
+  std::size_t examined = 0;
   while (!stack.empty()) {
+    if (examined == max_cells) {
+      state.uncertified += stack.size();
+      break;
+    }
     const Cell cell = stack.back();
     stack.pop_back();
+    ++examined;
     ++state.cells;
     const ScalarNet net = restrict_net(patch.f, cell);
     const bool positive = std::any_of(net.c.begin(), net.c.end(), [&](double c) { return c > patch.zero; });
@@ -461,21 +487,34 @@ void search_patch(PatchSection& patch, SectionState& state) {
     const std::vector<Crossing> crossings = cell_crossings(patch, cell, state, pole);
     const AnyBezierPatch sub = cell_patch(patch.patch, cell);
     if (!pole) {
-      const bool graph = leaf_constant(net, sub, true).has_value() || leaf_constant(net, sub, false).has_value();
+      const bool graph = net_derivatives(net).st_min > 0.0 || net_derivatives(transposed(net)).st_min > 0.0;
       if (graph && crossings.empty()) continue;
       if (graph && crossings.size() == 2 && trace_leaf(patch, cell, net, sub, crossings[0], crossings[1], state)) continue;
     }
+    // Two crossings join by a segment once the box is within the tolerance. No crossing (a loop
+    // inside, a touching point, or nothing), one or more than two are split further, down to
+    // finest_cell of the tolerance or until f's coefficients on the cell (the smaller sign's, with
+    // no crossing) are rounding noise, a tangent point or a crossing of the curve with itself.
     const double diagonal = net_diagonal(sub);
-    if (cell.depth >= max_depth || diagonal <= smallest_cell * state.tolerance || (pole && diagonal <= state.tolerance)) {
-      // The curve and any segment between its crossings lie in the box of the control points.
-      if (crossings.empty()) {
+    double above = 0.0, below = 0.0;
+    for (const double c : net.c) {
+      above = std::max(above, c);
+      below = std::max(below, -c);
+    }
+    const double size_of_f = crossings.empty() ? std::min(above, below) : std::max(above, below);
+    const bool finest = cell.depth >= max_depth || diagonal <= finest_cell * state.tolerance || size_of_f <= noise * patch.zero;
+    if (finest || (crossings.size() == 2 && diagonal <= state.tolerance)) {
+      // The section in the cell and any segment between its crossings lie in the box of the
+      // control points, within its diagonal of each other.
+      if (crossings.empty()) {  // loops inside, or none: the box meets the plane (mixed signs)
         const Vec2 uv(0.5 * (cell.u0 + cell.u1), 0.5 * (cell.v0 + cell.v1));
         state.tangent_candidates.push_back({{evaluate_any(patch.patch, uv.x(), uv.y()), patch.index, uv}, diagonal});
         continue;
       }
-      if (crossings.size() != 2 || diagonal > state.tolerance) ++state.uncertified;
-      for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
-        state.pieces.push_back({crossings[k].node, crossings[k + 1].node, {}, diagonal});
+      // Two crossings: one segment; more (the curve crosses itself): a star from the first.
+      if (crossings.size() == 1 || diagonal > state.tolerance) ++state.uncertified;
+      for (std::size_t k = 1; k < crossings.size(); ++k)
+        state.pieces.push_back({crossings[0].node, crossings[k].node, {}, diagonal});
       continue;
     }
     const double us = split_point(cell.u0, cell.u1, [&](double u) {
@@ -491,7 +530,6 @@ void search_patch(PatchSection& patch, SectionState& state) {
     stack.push_back({cell.u0, us, vs, cell.v1, depth});
     stack.push_back({us, cell.u1, vs, cell.v1, depth});
   }
-  PATCHWORK_ASSERT(stack.empty(), "the search ends with every cell examined");
 }
 
 }  // namespace patchwork::detail

@@ -185,6 +185,28 @@ TEST(PlaneSection, TorusCutThroughItsAxisIsTwoCircles) {
   }
 }
 
+TEST(PlaneSection, PlaneTangentAtASaddleCrossesItself) {
+  // x = R - r touches the torus at its inner equator's point (R - r, 0, 0), a saddle at a corner
+  // of four patches: the section is a closed curve through it twice (a figure eight).
+  const double R = 2.0, r = 0.5;
+  const PatchSet set = set_of(nurbs_torus(Vec3::Zero(), R, r));
+  const Vec3 saddle(R - r, 0, 0), n(1, 0, 0);
+  const PlaneSection section = plane_section(set, saddle, n, 1e-4);
+  EXPECT_EQ(section.uncertified_pieces, 0U);
+  EXPECT_TRUE(section.tangent_points.empty());
+  ASSERT_FALSE(section.polylines.empty());
+  std::size_t through_saddle = 0;
+  for (const SectionPolyline& line : section.polylines) {
+    EXPECT_TRUE(line.closed);
+    for (const SectionVertex& v : line.vertices) {
+      EXPECT_LE(patchwork::testing::torus_distance(v.point, R, r), 1e-12);
+      through_saddle += (v.point - saddle).norm() <= 1e-12;
+    }
+  }
+  EXPECT_EQ(through_saddle, 2U);
+  expect_vertices_exact(set, section, saddle, n);
+}
+
 TEST(PlaneSection, PlaneThroughAPoleCrossesIt) {
   const PatchSet set = set_of(nurbs_sphere(Vec3::Zero(), 1.0));
   const Vec3 pole(0, 0, 1), n = Vec3(1, 0.3, 1).normalized();
