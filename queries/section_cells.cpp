@@ -23,10 +23,7 @@ constexpr double same_crossing = 1e-9;
 // Cells with other than two crossings are split down to this fraction of the tolerance.
 constexpr double finest_cell = 1e-3;
 // ... or until f's coefficients on the cell are at most this many times the rounding level.
-constexpr double noise = 1e4;
-// Roots this close to an end of a line where f vanishes may be that end (a double root there is
-// found within about 1e-8, a triple one within 1e-5).
-constexpr double end_root_snap = 1e-4;
+constexpr double noise = 64.0;
 // The search of one patch examines at most this many cells; the cells left are uncertified (a
 // plane tangent along a curve inside a patch, which the search cannot resolve into arcs).
 constexpr std::size_t max_cells = std::size_t{1} << 16;
@@ -439,20 +436,7 @@ LineRoots line_roots(const PatchSection& patch, bool along_u, double at, Section
   const std::vector<double> line = iso_line(patch.f, along_u, at);
   result.zero = std::all_of(line.begin(), line.end(), [&](double c) { return std::abs(c) <= patch.zero; });
   if (result.zero) return result;
-  // An end where f vanishes (a cell corner on the curve, a saddle at a patch corner) is a root
-  // exactly: bernstein_roots puts a multiple root only near it (rounding^(1/multiplicity)).
-  const bool zero_start = std::abs(line.front()) <= patch.zero, zero_end = std::abs(line.back()) <= patch.zero;
-  // A root near such an end is that end's when f is rounding noise between them (a simple root
-  // near the end, where f grows between, is kept).
-  const auto at_end = [&](double t, double end) {
-    return std::abs(t - end) <= end_root_snap && std::abs(bernstein_evaluate(line, 0.5 * (t + end))) <= 16.0 * patch.zero;
-  };
-  for (const double t : bernstein_roots(line)) {
-    if ((zero_start && at_end(t, 0.0)) || (zero_end && at_end(t, 1.0))) continue;
-    result.t.push_back(t);
-  }
-  if (zero_start) result.t.insert(result.t.begin(), 0.0);
-  if (zero_end) result.t.push_back(1.0);
+  result.t = bernstein_roots(line);
   for (const double t : result.t) result.nodes.push_back(add_node(state, patch, along_u ? Vec2(t, at) : Vec2(at, t)));
   return result;
 }

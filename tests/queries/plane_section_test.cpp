@@ -207,6 +207,37 @@ TEST(PlaneSection, PlaneTangentAtASaddleCrossesItself) {
   expect_vertices_exact(set, section, saddle, n);
 }
 
+TEST(PlaneSection, PlaneTangentAtASaddleInsideAPatchCrossesItself) {
+  // The tangent plane at a point of the torus's inner half (negative curvature), inside a patch:
+  // the section crosses itself there, in a cell whose crossings are joined to one of them.
+  const double R = 2.0, r = 0.5, theta = 0.3, phi = 0.75 * pi + 0.2;
+  const PatchSet set = set_of(nurbs_torus(Vec3::Zero(), R, r));
+  const Vec3 n(std::cos(phi) * std::cos(theta), std::cos(phi) * std::sin(theta), std::sin(phi));
+  const Vec3 saddle = Vec3(R * std::cos(theta), R * std::sin(theta), 0.0) + r * n;
+  // (Much below 1e-5 f is rounding noise on cells small enough: see docs/queries.md.)
+  for (const double tolerance : {1e-3, 1e-5}) {
+    const PlaneSection section = plane_section(set, saddle, n, tolerance);
+    EXPECT_EQ(section.uncertified_pieces, 0U);
+    EXPECT_LE(section.error_bound, tolerance);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const SectionPolyline& line : section.polylines) {
+      EXPECT_TRUE(line.closed);
+      for (const SectionVertex& v : line.vertices) {
+        EXPECT_LE(patchwork::testing::torus_distance(v.point, R, r), 1e-12);
+        nearest = std::min(nearest, (v.point - saddle).norm());
+      }
+    }
+    EXPECT_LE(nearest, section.error_bound);
+    expect_vertices_exact(set, section, saddle, n);
+    // The four arms meet at one vertex, which the polylines pass twice.
+    std::vector<std::array<double, 3>> points;
+    for (const SectionPolyline& line : section.polylines)
+      for (const SectionVertex& v : line.vertices) points.push_back({v.point.x(), v.point.y(), v.point.z()});
+    std::sort(points.begin(), points.end());
+    EXPECT_NE(std::adjacent_find(points.begin(), points.end()), points.end());
+  }
+}
+
 TEST(PlaneSection, PlaneThroughAPoleCrossesIt) {
   const PatchSet set = set_of(nurbs_sphere(Vec3::Zero(), 1.0));
   const Vec3 pole(0, 0, 1), n = Vec3(1, 0.3, 1).normalized();
@@ -235,6 +266,24 @@ TEST(PlaneSection, TangentPlaneGivesAFlaggedPoint) {
     const PlaneSection off = plane_section(set, 1.001 * touch, touch, 1e-3);
     EXPECT_TRUE(off.polylines.empty() && off.tangent_points.empty());
   }
+}
+
+TEST(PlaneSection, TangencyAlongACurveInsideAPatchIsNotCertified) {
+  // The plane touches the cylinder along the ruling at 45 degrees, inside a patch: f <= 0 with a
+  // double zero along a line, which the cells cannot resolve into arcs or isolated points. The
+  // search stops at its budget and says so instead of claiming a certified answer.
+  const PatchSet set = set_of(nurbs_cylinder(Vec3::Zero(), 1.0, 2.0));
+  const Vec3 touch(std::sqrt(0.5), std::sqrt(0.5), 0.0);
+  const PlaneSection section = plane_section(set, touch, touch, 1e-2);
+  EXPECT_GT(section.uncertified_pieces, 0U);
+  EXPECT_TRUE(section.polylines.empty());
+  // Along the seam (a shared edge) the same tangency is a side in the plane: a certified segment.
+  const PlaneSection seam = plane_section(set, Vec3(1, 0, 0), Vec3(1, 0, 0), 1e-2);
+  EXPECT_EQ(seam.uncertified_pieces, 0U);
+  ASSERT_EQ(seam.polylines.size(), 1U);
+  EXPECT_FALSE(seam.polylines[0].closed);
+  for (const SectionVertex& v : seam.polylines[0].vertices) EXPECT_LE((v.point - Vec3(1, 0, v.point.z())).norm(), 1e-15);
+  EXPECT_NEAR(length(seam.polylines[0]), 2.0, 1e-15);
 }
 
 TEST(PlaneSection, PatchInThePlaneIsReportedWhole) {
