@@ -38,13 +38,17 @@
 //   - a cell side whose coefficients all vanish lies in the plane: a polyline along it (the iso-line
 //     sampled, its bound (h^2 / 8) M_ss), or, when the side collapses to a point, that point;
 //   - a point where the plane touches the surface without crossing it (a vanishing corner of cells
-//     of one sign, a pole, or a cell smaller than 10^-3 tolerance where f keeps changing sign
-//     without any crossing on the cell's boundary) is a tangent point, not a polyline: the section
-//     near it lies within the cell's size of that point;
-//   - a cell of that size with crossings on its boundary that it cannot resolve as one arc (the
-//     curve crosses itself, or reaches a pole) is joined by straight segments, its bound the
-//     diagonal of the box of its control points (the curve and the segment both lie in it); when
-//     that box is larger than the tolerance the piece is counted as uncertified.
+//     of one sign, a pole, or a small cell where f keeps changing sign without any crossing on the
+//     cell's boundary) is a tangent point, not a polyline: it lies within the bound of the plane
+//     and any section near it within the bound of it;
+//   - a cell whose box is within the tolerance with two crossings that it cannot resolve as one
+//     arc (a pole among them) joins them by a segment, its bound the diagonal of the box of the
+//     cell's control points (the curve and the segment both lie in it); a cell with other than two
+//     crossings is split further, down to 10^-3 of the tolerance or until f's coefficients are 64
+//     times their rounding level, and then joins its crossings as a star from the first (the curve
+//     crossing itself at a saddle), within the same bound. A piece whose box exceeds the tolerance,
+//     a cell with a single crossing, and the cells left when a patch's search reaches 2^16 cells
+//     (a tangency along a curve inside a patch) are counted as uncertified.
 // T-junctions of the set are not followed: a polyline ends there (open).
 
 #include <cstdint>
