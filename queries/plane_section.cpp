@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 
+#include "core/assert.h"
 #include "queries/query_arguments.h"
 #include "queries/section_cells.h"
 
@@ -102,6 +103,7 @@ std::vector<SectionPolyline> chain_pieces(const SectionState& state, NodeSets& s
   }
   for (std::size_t piece = 0; piece < pieces.size(); ++piece)
     if (!used[piece]) walk(piece, true);
+  PATCHWORK_ASSERT(std::all_of(used.begin(), used.end(), [](bool u) { return u; }), "every piece is in one polyline");
   return result;
 }
 

@@ -47,7 +47,7 @@
 //     crossings is split further, down to 10^-3 of the tolerance or until f's coefficients are 64
 //     times their rounding level, and then joins its crossings as a star from the first (the curve
 //     crossing itself at a saddle), within the same bound. A piece whose box exceeds the tolerance,
-//     a cell with a single crossing, and the cells left when a patch's search reaches 2^16 cells
+//     a cell with a single crossing, and the cells left when a patch's search reaches 2^14 cells
 //     (a tangency along a curve inside a patch) are counted as uncertified.
 // T-junctions of the set are not followed: a polyline ends there (open).
 

@@ -6,6 +6,7 @@
 #include <optional>
 #include <variant>
 
+#include "core/assert.h"
 #include "curves/bernstein.h"
 #include "surfaces/patch_flatness.h"
 #include "surfaces/rational_bounds.h"
@@ -26,7 +27,7 @@ constexpr double finest_cell = 1e-3;
 constexpr double noise = 64.0;
 // The search of one patch examines at most this many cells; the cells left are uncertified (a
 // plane tangent along a curve inside a patch, which the search cannot resolve into arcs).
-constexpr std::size_t max_cells = std::size_t{1} << 16;
+constexpr std::size_t max_cells = std::size_t{1} << 14;
 
 struct Cell {
   double u0, u1, v0, v1;
@@ -304,7 +305,8 @@ bool trace_leaf(const PatchSection& patch, const Cell& cell, const ScalarNet& ne
     if (length <= 0.0) continue;
     const std::optional<double> C = leaf_constant(net, sub, over_u);
     if (!C) continue;
-    const double steps = std::max(1.0, std::ceil(length * std::sqrt(*C / (8.0 * state.tolerance))));
+    double steps = std::max(1.0, std::ceil(length * std::sqrt(*C / (8.0 * state.tolerance))));
+    if (length * length * *C / (8.0 * steps * steps) > state.tolerance) steps += 1.0;  // rounding
     if (steps < best_steps) {
       best_steps = static_cast<int>(steps);
       best_over_u = over_u;
@@ -312,6 +314,7 @@ bool trace_leaf(const PatchSection& patch, const Cell& cell, const ScalarNet& ne
     }
   }
   if (best_steps > max_steps) return false;
+  PATCHWORK_ASSERT(best_steps >= 1 && best_bound <= state.tolerance, "a leaf's segments meet the tolerance");
   const int axis = best_over_u ? 0 : 1;
   const Crossing& first = a.uv[axis] <= b.uv[axis] ? a : b;
   const Crossing& last = a.uv[axis] <= b.uv[axis] ? b : a;
@@ -344,7 +347,8 @@ void report_side(const PatchSection& patch, const Cell& cell, int side, SectionS
   if (!state.sides.insert(key).second) return;
   const SecondDerivativeBounds M = second_bounds(cell_patch(patch.patch, cell));
   const double second = along_u ? M.uu : M.vv;
-  const double steps = std::max(1.0, std::ceil(std::sqrt(second / (8.0 * state.tolerance))));
+  double steps = std::max(1.0, std::ceil(std::sqrt(second / (8.0 * state.tolerance))));
+  if (second / (8.0 * steps * steps) > state.tolerance) steps += 1.0;  // rounding
   const auto uv_at = [&](double t) { return along_u ? Vec2(t, at) : Vec2(at, t); };
   SectionPiece piece{add_node(state, patch, uv_at(from)), add_node(state, patch, uv_at(to)), {},
                      second / (8.0 * steps * steps)};
