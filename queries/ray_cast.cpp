@@ -27,15 +27,19 @@ ScalarNets scalar_nets(const detail::NetPiece& piece, const Vec3& origin, const 
   const std::size_t count = piece.net.size();
   nets.g[0].resize(count);
   nets.g[1].resize(count);
-  double size = 0.0;
+  double size = 0.0, coordinates = 0.0;
   for (std::size_t k = 0; k < count; ++k) {
     const Vec4& h = piece.net[k];
-    const Vec3 d = h.head<3>() / h[3] - origin;
+    const Vec3 p = h.head<3>() / h[3];
+    const Vec3 d = p - origin;
     nets.g[0][k] = h[3] * a.dot(d);
     nets.g[1][k] = h[3] * b.dot(d);
-    size = std::max(size, h[3] * (d.norm() + origin.norm() + h.head<3>().norm() / h[3]));
+    coordinates = std::max(coordinates, p.cwiseAbs().maxCoeff());
+    size = std::max(size, h[3] * (d.norm() + origin.norm() + p.norm()));
   }
-  nets.margin = detail::rounding_margin(piece) * 2 + 16 * detail::unit_roundoff * size;
+  // The control points' rounding (detail::rounding_margin, twice) and that of the products.
+  nets.margin = 16.0 * (piece.depth + 4) * (piece.n + piece.m + 2) * detail::unit_roundoff * coordinates +
+                16 * detail::unit_roundoff * size;
   return nets;
 }
 
@@ -85,39 +89,78 @@ bool certified_unique(const ScalarNets& nets) {
   return low > slack || high < -slack;
 }
 
-// Value and first derivatives of the scalar Bernstein patch g at local (s, t).
-std::array<double, 3> scalar_derivatives(const std::vector<double>& g, int n, int m, double s, double t) {
+// Bernstein values b and derivatives d of one degree at x.
+void bernstein_with_derivatives(int degree, double x, double* b, double* d) {
+  // The values of degree - 1 first; those of degree and the derivatives follow from them.
+  std::array<double, max_degree + 1> lower{};
+  lower[0] = 1.0;
+  for (int k = 1; k < degree; ++k) {
+    for (int i = k; i > 0; --i)
+      lower[static_cast<std::size_t>(i)] = (1 - x) * lower[static_cast<std::size_t>(i)] + x * lower[static_cast<std::size_t>(i - 1)];
+    lower[0] *= (1 - x);
+  }
+  for (int i = 0; i <= degree; ++i) {
+    const double left = i > 0 ? lower[static_cast<std::size_t>(i - 1)] : 0.0;
+    const double right = i < degree ? lower[static_cast<std::size_t>(i)] : 0.0;
+    b[i] = degree == 0 ? 1.0 : (1 - x) * right + x * left;
+    d[i] = degree * (left - right);
+  }
+}
+
+// Values and first derivatives (g, g_s, g_t) of both scalar nets at local (s, t).
+std::array<std::array<double, 3>, 2> scalar_derivatives(const ScalarNets& nets, double s, double t) {
   std::array<double, max_degree + 1> bu{}, du{}, bv{}, dv{};
-  const auto basis = [](int degree, double x, double* b, double* d) {
-    // Bernstein values of degree - 1 first, then of degree, with derivatives from the former.
-    std::array<double, max_degree + 1> lower{};
-    lower[0] = 1.0;
-    for (int k = 1; k < degree; ++k) {
-      for (int i = k; i > 0; --i) lower[static_cast<std::size_t>(i)] = (1 - x) * lower[static_cast<std::size_t>(i)] + x * lower[static_cast<std::size_t>(i - 1)];
-      lower[0] *= (1 - x);
+  bernstein_with_derivatives(nets.n, s, bu.data(), du.data());
+  bernstein_with_derivatives(nets.m, t, bv.data(), dv.data());
+  std::array<std::array<double, 3>, 2> out{};
+  for (std::size_t f = 0; f < 2; ++f) {
+    const std::vector<double>& g = nets.g[f];
+    for (int j = 0; j <= nets.m; ++j) {
+      double row = 0.0, row_s = 0.0;
+      for (int i = 0; i <= nets.n; ++i) {
+        const double c = g[static_cast<std::size_t>(i + (nets.n + 1) * j)];
+        row += bu[static_cast<std::size_t>(i)] * c;
+        row_s += du[static_cast<std::size_t>(i)] * c;
+      }
+      out[f][0] += bv[static_cast<std::size_t>(j)] * row;
+      out[f][1] += bv[static_cast<std::size_t>(j)] * row_s;
+      out[f][2] += dv[static_cast<std::size_t>(j)] * row;
     }
-    for (int i = 0; i <= degree; ++i) {
-      const double left = i > 0 ? lower[static_cast<std::size_t>(i - 1)] : 0.0;
-      const double right = i < degree ? lower[static_cast<std::size_t>(i)] : 0.0;
-      b[i] = degree == 0 ? 1.0 : (1 - x) * right + x * left;
-      d[i] = degree * (left - right);
-    }
-  };
-  basis(n, s, bu.data(), du.data());
-  basis(m, t, bv.data(), dv.data());
-  std::array<double, 3> out{0.0, 0.0, 0.0};
-  for (int j = 0; j <= m; ++j) {
-    double row = 0.0, row_s = 0.0;
-    for (int i = 0; i <= n; ++i) {
-      const double c = g[static_cast<std::size_t>(i + (n + 1) * j)];
-      row += bu[static_cast<std::size_t>(i)] * c;
-      row_s += du[static_cast<std::size_t>(i)] * c;
-    }
-    out[0] += bv[static_cast<std::size_t>(j)] * row;
-    out[1] += bv[static_cast<std::size_t>(j)] * row_s;
-    out[2] += dv[static_cast<std::size_t>(j)] * row;
   }
   return out;
+}
+
+// Krawczyk's test on the piece X = [0,1]^2 for G = (g_1, g_2), with c = (1/2, 1/2), Y = G'(c)^-1
+// and the Jacobian's ranges J over X: K = c - Y G(c) + (I - Y J)(X - c). Every zero of G in X lies
+// in K, so K and X apart prove there is none, and the piece is dropped without halving.
+bool krawczyk_excludes(const ScalarNets& nets) {
+  const auto at_centre = scalar_derivatives(nets, 0.5, 0.5);
+  const double j00 = at_centre[0][1], j01 = at_centre[0][2], j10 = at_centre[1][1], j11 = at_centre[1][2];
+  const double det = j00 * j11 - j01 * j10;
+  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
+  const double y[2][2] = {{j11 / det, -j01 / det}, {-j10 / det, j00 / det}};
+  const Interval range[2][2] = {
+      {derivative_range(nets.g[0], nets.n, nets.m, 0), derivative_range(nets.g[0], nets.n, nets.m, 1)},
+      {derivative_range(nets.g[1], nets.n, nets.m, 0), derivative_range(nets.g[1], nets.n, nets.m, 1)}};
+  for (int r = 0; r < 2; ++r) {
+    // Row r of c - Y G(c), and the radius of row r of (I - Y J)(X - c) with X - c = [-1/2, 1/2]^2.
+    const double centre = 0.5 - (y[r][0] * at_centre[0][0] + y[r][1] * at_centre[1][0]);
+    double radius = 0.0, scale = std::abs(centre) + 1.0;
+    for (int c = 0; c < 2; ++c) {
+      Interval entry{r == c ? 1.0 : 0.0, r == c ? 1.0 : 0.0};
+      for (int k = 0; k < 2; ++k) {
+        const Interval product = Interval{y[r][k], y[r][k]} * range[k][c];
+        entry.low -= product.high;
+        entry.high -= product.low;
+        scale += std::abs(product.low) + std::abs(product.high);
+      }
+      radius += 0.5 * std::max(std::abs(entry.low), std::abs(entry.high));
+    }
+    // Rounding in G(c), Y and the products, and the nets' own margin carried through Y.
+    const double slack = 64 * detail::unit_roundoff * scale + nets.margin * (std::abs(y[r][0]) + std::abs(y[r][1]));
+    if (centre - radius - slack > 1.0 || centre + radius + slack < 0.0) return true;
+  }
+  return false;
 }
 
 // Newton on (g_1, g_2) = 0 in the piece's local parameters from its centre; the zero if it
@@ -126,16 +169,15 @@ std::array<double, 3> scalar_derivatives(const std::vector<double>& g, int n, in
 bool local_newton(const ScalarNets& nets, double& s, double& t) {
   s = t = 0.5;
   for (int iteration = 0; iteration < 20; ++iteration) {
-    const auto g1 = scalar_derivatives(nets.g[0], nets.n, nets.m, s, t);
-    const auto g2 = scalar_derivatives(nets.g[1], nets.n, nets.m, s, t);
-    const double det = g1[1] * g2[2] - g1[2] * g2[1];
+    const auto g = scalar_derivatives(nets, s, t);
+    const double det = g[0][1] * g[1][2] - g[0][2] * g[1][1];
     if (!(std::abs(det) > 0.0)) return false;
-    const double ds = (g1[0] * g2[2] - g1[2] * g2[0]) / det;
-    const double dt = (g1[1] * g2[0] - g1[0] * g2[1]) / det;
+    const double ds = (g[0][0] * g[1][2] - g[0][2] * g[1][0]) / det;
+    const double dt = (g[0][1] * g[1][0] - g[0][0] * g[1][1]) / det;
     s -= ds;
     t -= dt;
     if (!(s > -0.25 && s < 1.25 && t > -0.25 && t < 1.25)) return false;
-    if (std::abs(ds) + std::abs(dt) <= 1e-14) break;
+    if (std::abs(ds) + std::abs(dt) <= 1e-13) break;
   }
   const double hair = 1e-9;
   return s >= -hair && s <= 1 + hair && t >= -hair && t <= 1 + hair;
@@ -201,6 +243,7 @@ void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& roo
     ++examined;
     const ScalarNets nets = scalar_nets(piece, ray.origin, ray.a, ray.b);
     if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin)) continue;
+    if (krawczyk_excludes(nets)) continue;
     if (certified_unique(nets)) {
       double s = 0.5, t = 0.5;
       if (local_newton(nets, s, t)) {
