@@ -145,8 +145,11 @@ Foot newton_foot(const Segment<Dim>& segment, int index, double t, const Point<D
       step = g > 0 ? -(segment.b - segment.a) / 100 : (segment.b - segment.a) / 100;
     }
     const double next = std::clamp(t + step, segment.a, segment.b);
-    const double distance = (segment.derivatives(segment.curve, next)[0] - q).norm();
-    if (distance <= best) {
+    const Point<Dim> point = segment.derivatives(segment.curve, next)[0];
+    const double distance = (point - q).norm();
+    // Equal up to rounding counts as no worse: at a minimum the distance is flat, and the
+    // converged, orthogonal foot is the one to keep.
+    if (distance <= best + 8 * detail::unit_roundoff * (best + q.cwiseAbs().maxCoeff() + point.cwiseAbs().maxCoeff())) {
       best = distance;
       best_t = next;
     }
@@ -214,7 +217,12 @@ CurveClosestPoint<Dim> search(const std::vector<Segment<Dim>>& segments, const P
         heap.push(std::move(child));
     }
   }
-  // The best foot's distance from the exact curve (a piece's corner carries rounding).
+  // A foot found as a piece's end point is polished by Newton (equal distance up to rounding, but
+  // orthogonal); its distance is then taken from the exact curve.
+  {
+    const Foot polished = newton_foot(segments[static_cast<std::size_t>(best.segment)], best.segment, best.t, q);
+    if (polished.distance <= best.distance + 8 * detail::unit_roundoff * (best.distance + size)) best = polished;
+  }
   const auto& seg = segments[static_cast<std::size_t>(best.segment)];
   const Point<Dim> foot = seg.derivatives(seg.curve, best.t)[0];
   CurveClosestPoint<Dim> result;

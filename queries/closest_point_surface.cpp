@@ -22,6 +22,8 @@ struct Entry {
   double lower;
   std::int64_t node;
   std::size_t piece;
+  // A piece as the hierarchy holds it (not yet halved).
+  bool whole = false;
   bool operator>(const Entry& other) const { return lower > other.lower; }
 };
 
@@ -38,7 +40,7 @@ SurfaceClosestPoint search(const PatchBvh& bvh, const Vec3& q, const ClosestPoin
   const double size = std::max(extent.diagonal().norm(), std::numeric_limits<double>::min());
   const double gap = options.relative_gap * size;
   const double separation = options.relative_separation * size;
-  const double newton_threshold = 1e-6 * size;
+  const double newton_threshold = 1e-3 * size;
 
   Candidate best{0, 0.0, 0.0, no_bound};
   std::vector<Candidate> feet;
@@ -87,7 +89,7 @@ SurfaceClosestPoint search(const PatchBvh& bvh, const Vec3& q, const ClosestPoin
           if (bound >= best.distance - gap)
             pruned_lower = std::min(pruned_lower, bound);
           else
-            heap.push({bound, -1, store(piece)});
+            heap.push({bound, -1, store(piece), true});
         }
       } else {
         const std::size_t children[2] = {static_cast<std::size_t>(entry.node) + 1, node.second_or_first_piece};
@@ -107,7 +109,9 @@ SurfaceClosestPoint search(const PatchBvh& bvh, const Vec3& q, const ClosestPoin
     }
     detail::NetPiece piece = std::move(pool[entry.piece]);
     free_slots.push_back(entry.piece);
-    if (best.distance - entry.lower > newton_threshold) {
+    // Newton from every piece of the hierarchy that is still in question, and from a halved piece
+    // only where it could still be far better than the best so far (another basin).
+    if (entry.whole || best.distance - entry.lower > newton_threshold) {
       const detail::PatchFoot foot =
           detail::newton_foot(set, piece.patch, 0.5 * (piece.u0 + piece.u1), 0.5 * (piece.v0 + piece.v1), q);
       const Candidate candidate{piece.patch, foot.u, foot.v, foot.distance};
@@ -128,6 +132,13 @@ SurfaceClosestPoint search(const PatchBvh& bvh, const Vec3& q, const ClosestPoin
       else
         heap.push({bound, -1, store(std::move(child))});
     }
+  }
+  // A foot found as a piece's corner is polished by Newton (equal distance up to rounding, but
+  // orthogonal).
+  {
+    const detail::PatchFoot polished = detail::newton_foot(set, best.patch, best.u, best.v, q);
+    if (polished.distance <= best.distance + 8 * detail::unit_roundoff * (best.distance + size))
+      best = {best.patch, polished.u, polished.v, polished.distance};
   }
   SurfaceClosestPoint result;
   result.patch = best.patch;

@@ -11,7 +11,7 @@ PatchBvh::PatchBvh(const PatchSet& set, int pieces_per_side) : set_(&set) {
   if (pieces_per_side < 0)
     throw InvalidInput(detail::message("PatchBvh: pieces_per_side must be >= 0, not ", pieces_per_side));
   const std::size_t count = set.count();
-  const int k = pieces_per_side > 0 ? pieces_per_side : count <= 4096 ? 4 : count <= 65536 ? 2 : 1;
+  const int k = pieces_per_side > 0 ? pieces_per_side : count <= 1024 ? 8 : count <= 4096 ? 4 : count <= 65536 ? 2 : 1;
   const std::size_t per_patch = static_cast<std::size_t>(k) * static_cast<std::size_t>(k);
   std::vector<detail::NetPiece> pieces(count * per_patch);
   std::vector<Eigen::AlignedBox3d> boxes(pieces.size());

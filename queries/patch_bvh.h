@@ -30,8 +30,8 @@ class PatchBvh {
     bool leaf() const noexcept { return piece_count > 0; }
   };
 
-  /// The hierarchy of `set`, each patch cut into k x k pieces (k = 0: 4 for up to 4,096 patches,
-  /// 2 up to 65,536, else 1). Keeps a pointer to `set`. \pre set outlives the hierarchy.
+  /// The hierarchy of `set`, each patch cut into k x k pieces (k = 0: 8 for up to 1,024 patches,
+  /// 4 up to 4,096, 2 up to 65,536, else 1: smaller pieces leave a ray fewer pieces to try). Keeps a pointer to `set`. \pre set outlives the hierarchy.
   /// \throws InvalidInput if k < 0.
   explicit PatchBvh(const PatchSet& set, int pieces_per_side = 0);
 

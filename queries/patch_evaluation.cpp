@@ -62,8 +62,11 @@ PatchFoot newton_foot(const PatchSet& set, std::uint32_t p, double u, double v, 
     for (int halving = 0; halving < 30; ++halving) {
       const double nu = std::clamp(best.u + step[0], 0.0, 1.0);
       const double nv = std::clamp(best.v + step[1], 0.0, 1.0);
-      const double distance = (patch_point(set, p, nu, nv) - q).norm();
-      if (distance <= best.distance) {
+      const Vec3 point = patch_point(set, p, nu, nv);
+      const double distance = (point - q).norm();
+      // Equal up to rounding counts as no worse: at a minimum the distance is flat, and the
+      // converged, orthogonal foot is the one to keep.
+      if (distance <= best.distance + 8 * roundoff * (best.distance + q.cwiseAbs().maxCoeff() + point.cwiseAbs().maxCoeff())) {
         const bool moved = std::abs(nu - best.u) + std::abs(nv - best.v) > 4 * roundoff;
         best = {nu, nv, distance};
         improved = moved;

@@ -16,14 +16,18 @@ constexpr int max_degree = 31;
 // The two scalar nets w_ij a.(P_ij - o), w_ij b.(P_ij - o) of a piece.
 struct ScalarNets {
   int n = 0, m = 0;
-  std::array<std::vector<double>, 2> g;
+  // The coefficients, in a buffer of the thread's that every piece reuses (no allocation).
+  std::array<std::vector<double>, 2>& g;
   double margin = 0.0;
 };
 
+std::array<std::vector<double>, 2>& scratch_coefficients() {
+  thread_local std::array<std::vector<double>, 2> buffers;
+  return buffers;
+}
+
 ScalarNets scalar_nets(const detail::NetPiece& piece, const Vec3& origin, const Vec3& a, const Vec3& b) {
-  ScalarNets nets;
-  nets.n = piece.n;
-  nets.m = piece.m;
+  ScalarNets nets{piece.n, piece.m, scratch_coefficients(), 0.0};
   const std::size_t count = piece.net.size();
   nets.g[0].resize(count);
   nets.g[1].resize(count);
@@ -35,11 +39,13 @@ ScalarNets scalar_nets(const detail::NetPiece& piece, const Vec3& origin, const 
     nets.g[0][k] = h[3] * a.dot(d);
     nets.g[1][k] = h[3] * b.dot(d);
     coordinates = std::max(coordinates, p.cwiseAbs().maxCoeff());
-    size = std::max(size, h[3] * (d.norm() + origin.norm() + p.norm()));
+    size = std::max(size, h[3] * (p.cwiseAbs().maxCoeff() + origin.cwiseAbs().maxCoeff()));
   }
+  // p - o and the dot product with a unit vector round by a few units of |p| + |o| (max norms,
+  // times sqrt(3) at most); the margin takes 32 of them.
   // The control points' rounding (detail::rounding_margin, twice) and that of the products.
   nets.margin = 16.0 * (piece.depth + 4) * (piece.n + piece.m + 2) * detail::unit_roundoff * coordinates +
-                16 * detail::unit_roundoff * size;
+                32 * detail::unit_roundoff * size;
   return nets;
 }
 
@@ -79,10 +85,20 @@ Interval derivative_range(const std::vector<double>& g, int n, int m, int dir) {
   return r;
 }
 
+// The ranges of the Jacobian of (g_1, g_2) over the piece: [f][d] is d g_f / d(s or t).
+using JacobianRanges = std::array<std::array<Interval, 2>, 2>;
+
+JacobianRanges jacobian_ranges(const ScalarNets& nets) {
+  JacobianRanges r;
+  for (int f = 0; f < 2; ++f)
+    for (int d = 0; d < 2; ++d)
+      r[static_cast<std::size_t>(f)][static_cast<std::size_t>(d)] = derivative_range(nets.g[static_cast<std::size_t>(f)], nets.n, nets.m, d);
+  return r;
+}
+
 // The Jacobian of (g_1, g_2) is regular wherever the differenced nets allow: at most one zero.
-bool certified_unique(const ScalarNets& nets) {
-  const Interval g1s = derivative_range(nets.g[0], nets.n, nets.m, 0), g1t = derivative_range(nets.g[0], nets.n, nets.m, 1);
-  const Interval g2s = derivative_range(nets.g[1], nets.n, nets.m, 0), g2t = derivative_range(nets.g[1], nets.n, nets.m, 1);
+bool certified_unique(const JacobianRanges& range) {
+  const Interval g1s = range[0][0], g1t = range[0][1], g2s = range[1][0], g2t = range[1][1];
   const Interval p = g1s * g2t, q = g1t * g2s;
   const double low = p.low - q.high, high = p.high - q.low;
   const double slack = 8 * detail::unit_roundoff * (std::abs(p.low) + std::abs(p.high) + std::abs(q.low) + std::abs(q.high));
@@ -133,15 +149,12 @@ std::array<std::array<double, 3>, 2> scalar_derivatives(const ScalarNets& nets, 
 // Krawczyk's test on the piece X = [0,1]^2 for G = (g_1, g_2), with c = (1/2, 1/2), Y = G'(c)^-1
 // and the Jacobian's ranges J over X: K = c - Y G(c) + (I - Y J)(X - c). Every zero of G in X lies
 // in K, so K and X apart prove there is none, and the piece is dropped without halving.
-bool krawczyk_excludes(const ScalarNets& nets) {
+bool krawczyk_excludes(const ScalarNets& nets, const JacobianRanges& range) {
   const auto at_centre = scalar_derivatives(nets, 0.5, 0.5);
   const double j00 = at_centre[0][1], j01 = at_centre[0][2], j10 = at_centre[1][1], j11 = at_centre[1][2];
   const double det = j00 * j11 - j01 * j10;
   if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
   const double y[2][2] = {{j11 / det, -j01 / det}, {-j10 / det, j00 / det}};
-  const Interval range[2][2] = {
-      {derivative_range(nets.g[0], nets.n, nets.m, 0), derivative_range(nets.g[0], nets.n, nets.m, 1)},
-      {derivative_range(nets.g[1], nets.n, nets.m, 0), derivative_range(nets.g[1], nets.n, nets.m, 1)}};
   for (int r = 0; r < 2; ++r) {
     // Row r of c - Y G(c), and the radius of row r of (I - Y J)(X - c) with X - c = [-1/2, 1/2]^2.
     const double centre = 0.5 - (y[r][0] * at_centre[0][0] + y[r][1] * at_centre[1][0]);
@@ -149,7 +162,7 @@ bool krawczyk_excludes(const ScalarNets& nets) {
     for (int c = 0; c < 2; ++c) {
       Interval entry{r == c ? 1.0 : 0.0, r == c ? 1.0 : 0.0};
       for (int k = 0; k < 2; ++k) {
-        const Interval product = Interval{y[r][k], y[r][k]} * range[k][c];
+        const Interval product = Interval{y[r][k], y[r][k]} * range[static_cast<std::size_t>(k)][static_cast<std::size_t>(c)];
         entry.low -= product.high;
         entry.high -= product.low;
         scale += std::abs(product.low) + std::abs(product.high);
@@ -191,18 +204,18 @@ struct Ray {
 // Newton on the patch itself from (u, v): the plane distances (a.(F-o), b.(F-o)) to zero. The
 // parameters may leave the square by a hair (a hit on an edge); the caller decides.
 void polish(const PatchSet& set, std::uint32_t p, const Ray& ray, double& u, double& v) {
-  for (int iteration = 0; iteration < 4; ++iteration) {
+  for (int iteration = 0; iteration < 3; ++iteration) {
     const PartialDerivatives<3> d = detail::patch_derivatives(set, p, u, v, 1);
     const Vec3 r = d.at(0, 0) - ray.origin;
-    Eigen::Matrix2d jacobian;
-    jacobian << ray.a.dot(d.at(1, 0)), ray.a.dot(d.at(0, 1)), ray.b.dot(d.at(1, 0)), ray.b.dot(d.at(0, 1));
-    const Vec2 residual(ray.a.dot(r), ray.b.dot(r));
-    if (!(std::abs(jacobian.determinant()) > 0.0)) return;
-    const Vec2 step = jacobian.inverse() * residual;
-    if (!step.allFinite()) return;
-    u = std::clamp(u - step[0], -1e-6, 1 + 1e-6);
-    v = std::clamp(v - step[1], -1e-6, 1 + 1e-6);
-    if (step.cwiseAbs().maxCoeff() <= 1e-15) break;
+    const double j00 = ray.a.dot(d.at(1, 0)), j01 = ray.a.dot(d.at(0, 1)), j10 = ray.b.dot(d.at(1, 0)), j11 = ray.b.dot(d.at(0, 1));
+    const double det = j00 * j11 - j01 * j10;
+    if (!(std::abs(det) > 0.0)) return;
+    const double r0 = ray.a.dot(r), r1 = ray.b.dot(r);
+    const double du = (j11 * r0 - j01 * r1) / det, dv = (j00 * r1 - j10 * r0) / det;
+    if (!std::isfinite(du) || !std::isfinite(dv)) return;
+    u = std::clamp(u - du, -1e-6, 1 + 1e-6);
+    v = std::clamp(v - dv, -1e-6, 1 + 1e-6);
+    if (std::abs(du) + std::abs(dv) <= 1e-15) break;
   }
 }
 
@@ -230,28 +243,29 @@ void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, dou
   if (!(hit.t >= ray.t_min && hit.t <= ray.t_max)) return;
   hit.normal = detail::patch_unit_normal(set, p, hit.u, hit.v);
   hit.grazing = grazing || std::abs(hit.normal.dot(ray.direction.normalized())) < 1e-6;
-  hits.push_back({hit, off_ray(set, p, ray, hit.u, hit.v)});
+  const Vec3 r = hit.point - ray.origin;
+  hits.push_back({hit, std::hypot(ray.a.dot(r), ray.b.dot(r))});
 }
 
 // The hits in one piece, halving where one hit per piece cannot be certified.
 void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& root, double size, std::vector<HitCandidate>& hits,
                 std::int64_t& examined) {
-  std::vector<detail::NetPiece> stack{root};
-  while (!stack.empty()) {
-    detail::NetPiece piece = std::move(stack.back());
-    stack.pop_back();
+  std::vector<detail::NetPiece> stack;
+  // The hits of one piece; false when it must be halved.
+  const auto settle = [&](const detail::NetPiece& piece) {
     ++examined;
     const ScalarNets nets = scalar_nets(piece, ray.origin, ray.a, ray.b);
-    if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin)) continue;
-    if (krawczyk_excludes(nets)) continue;
-    if (certified_unique(nets)) {
+    if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin)) return true;
+    const JacobianRanges ranges = jacobian_ranges(nets);
+    if (krawczyk_excludes(nets, ranges)) return true;
+    if (certified_unique(ranges)) {
       double s = 0.5, t = 0.5;
       if (local_newton(nets, s, t)) {
         const Vec2 uv = piece.global(s, t);
         double u = uv[0], v = uv[1];
         polish(set, piece.patch, ray, u, v);
         add_hit(set, ray, piece.patch, u, v, false, hits);
-        continue;
+        return true;
       }
       // Newton left the piece: a hit near its edge, or none; halving decides.
     }
@@ -259,18 +273,25 @@ void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& roo
     // both parameters.
     const bool tiny = detail::control_box(piece).diagonal().norm() <= 1e-7 * size ||
                       ((piece.u1 - piece.u0) <= 0x1p-30 && (piece.v1 - piece.v0) <= 0x1p-30);
-    if (tiny) {
-      // Uncertified down to the smallest pieces: a tangent contact if the centre is on the ray.
-      double u = 0.5 * (piece.u0 + piece.u1), v = 0.5 * (piece.v0 + piece.v1);
-      polish(set, piece.patch, ray, u, v);
-      u = std::clamp(u, 0.0, 1.0);
-      v = std::clamp(v, 0.0, 1.0);
-      if (off_ray(set, piece.patch, ray, u, v) <= 1e-9 * size) add_hit(set, ray, piece.patch, u, v, true, hits);
-      continue;
-    }
+    if (!tiny) return false;
+    // Uncertified down to the smallest pieces: a tangent contact if the centre is on the ray.
+    double u = 0.5 * (piece.u0 + piece.u1), v = 0.5 * (piece.v0 + piece.v1);
+    polish(set, piece.patch, ray, u, v);
+    u = std::clamp(u, 0.0, 1.0);
+    v = std::clamp(v, 0.0, 1.0);
+    if (off_ray(set, piece.patch, ray, u, v) <= 1e-9 * size) add_hit(set, ray, piece.patch, u, v, true, hits);
+    return true;
+  };
+  const auto halve = [&](const detail::NetPiece& piece) {
     int dir = detail::longer_direction(piece);
     if ((dir == 0 ? piece.u1 - piece.u0 : piece.v1 - piece.v0) <= 0x1p-30) dir = 1 - dir;
     for (detail::NetPiece& half : detail::halves(piece, dir)) stack.push_back(std::move(half));
+  };
+  if (!settle(root)) halve(root);
+  while (!stack.empty()) {
+    const detail::NetPiece piece = std::move(stack.back());
+    stack.pop_back();
+    if (!settle(piece)) halve(piece);
   }
 }
 

@@ -227,6 +227,28 @@ TEST(ClosestPointSurface, TeapotAgainstTheTessellatedMeshWithinItsBound) {
   }
 }
 
+RC_GTEST_PROP(ClosestPointSurface, TeapotFootResidualIsOrthogonalAndGlobal, ()) {
+  static const PatchBvh bvh(teapot());
+  const Vec3 q(*rc::gen::inRange(-600, 600) / 100.0, *rc::gen::inRange(-400, 400) / 100.0, *rc::gen::inRange(-200, 500) / 100.0);
+  const auto result = closest_point(bvh, q);
+  RC_ASSERT(result.lower_bound <= result.distance);
+  RC_ASSERT(result.distance - result.lower_bound <= 1e-11 * bvh.size());
+  // Global: no sample of any patch is nearer.
+  for (std::uint32_t p = 0; p < teapot().count(); ++p)
+    for (int i = 0; i <= 8; ++i)
+      for (int j = 0; j <= 8; ++j) RC_ASSERT((teapot().control_nets()[p].evaluate(i / 8.0, j / 8.0) - q).norm() >= result.lower_bound);
+  // Inside a patch and off the surface, the residual is orthogonal to both tangents.
+  if (result.u > 1e-6 && result.u < 1 - 1e-6 && result.v > 1e-6 && result.v < 1 - 1e-6 && result.distance > 1e-6) {
+    const BezierPatch3& patch = teapot().control_nets()[result.patch];
+    const Vec3 r = (result.point - q).normalized();
+    const Vec3 fu = derivative(patch, result.u, result.v, 1, 0), fv = derivative(patch, result.u, result.v, 0, 1);
+    if (fu.norm() > 1e-3 && fv.norm() > 1e-3) {
+      RC_ASSERT(std::abs(fu.normalized().dot(r)) <= 1e-7);
+      RC_ASSERT(std::abs(fv.normalized().dot(r)) <= 1e-7);
+    }
+  }
+}
+
 TEST(ClosestPointSurface, TeapotPoleAndSinglePatches) {
   const PatchSet& set = teapot();
   // Straight above the lid's knob: the foot is the pole, on the axis.
