@@ -238,10 +238,14 @@ void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, dou
   hit.patch = p;
   hit.u = std::clamp(u, 0.0, 1.0);
   hit.v = std::clamp(v, 0.0, 1.0);
-  hit.point = detail::patch_point(set, p, hit.u, hit.v);
+  // The point and the normal from one evaluation; the limit normal where F_u x F_v vanishes.
+  const PartialDerivatives<3> d = detail::patch_derivatives(set, p, hit.u, hit.v, 1);
+  hit.point = d.at(0, 0);
   hit.t = ray.direction.dot(hit.point - ray.origin) / ray.direction.squaredNorm();
   if (!(hit.t >= ray.t_min && hit.t <= ray.t_max)) return;
-  hit.normal = detail::patch_unit_normal(set, p, hit.u, hit.v);
+  const Vec3 cross = d.at(1, 0).cross(d.at(0, 1));
+  const double scale = d.at(1, 0).norm() * d.at(0, 1).norm();
+  hit.normal = cross.norm() > 1e-8 * scale ? cross.normalized() : detail::patch_unit_normal(set, p, hit.u, hit.v);
   hit.grazing = grazing || std::abs(hit.normal.dot(ray.direction.normalized())) < 1e-6;
   const Vec3 r = hit.point - ray.origin;
   hits.push_back({hit, std::hypot(ray.a.dot(r), ray.b.dot(r))});
