@@ -1,6 +1,7 @@
 #include "queries/plane_section.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -41,17 +42,61 @@ struct NodeSets {
   void unite(int a, int b) { parent[static_cast<std::size_t>(find(a))] = find(b); }
 };
 
-// Nodes at one point (within `distance`) are one node: a corner of several patches, a pole.
-void unite_close_nodes(const std::vector<SectionVertex>& nodes, double distance, NodeSets& sets) {
+// Which patches lie next to which: across each edge, the patch sharing it, or the other side of
+// its T-junction (the long edge's patch, or its parts').
+class Adjacency {
+ public:
+  explicit Adjacency(const PatchSet& set) : across_(set.count()) {
+    const auto add = [&](const EdgeRef& a, const EdgeRef& b) {
+      across_[a.patch][static_cast<std::size_t>(a.edge)].push_back(b.patch);
+      across_[b.patch][static_cast<std::size_t>(b.edge)].push_back(a.patch);
+    };
+    for (const SharedEdge& s : set.shared_edges()) add(s.first, s.second);
+    for (const TJunction& t : set.t_junctions())
+      for (const EdgeRef& part : t.parts) add(t.edge, part);
+  }
+
+  // The patches a node lies on: its own, and those across the edges of its patch it is on.
+  std::vector<std::uint32_t> patches_at(const SectionVertex& node) const {
+    std::vector<std::uint32_t> result{node.patch};
+    const std::array<bool, 4> on{node.uv.y() == 0.0, node.uv.x() == 1.0, node.uv.y() == 1.0, node.uv.x() == 0.0};
+    for (std::size_t e = 0; e < 4; ++e)
+      if (on[e]) result.insert(result.end(), across_[node.patch][e].begin(), across_[node.patch][e].end());
+    return result;
+  }
+
+  // a and b are one patch or share an edge (whole or at a T-junction).
+  bool next_to(std::uint32_t a, std::uint32_t b) const {
+    return a == b || std::any_of(across_[a].begin(), across_[a].end(), [&](const std::vector<std::uint32_t>& patches) {
+             return std::find(patches.begin(), patches.end(), b) != patches.end();
+           });
+  }
+
+ private:
+  std::vector<std::array<std::vector<std::uint32_t>, 4>> across_;
+};
+
+// Nodes at one point (within `distance`) are one node: a corner of several patches, a pole, the
+// end of a side in the plane. Only where their patches are next to each other: patches that
+// touch without sharing an edge around the point (the teapot's handle against its body) each keep
+// their own crossings, so a curve ending on one's open edge does not join the other's curve there.
+void unite_close_nodes(const std::vector<SectionVertex>& nodes, double distance, const Adjacency& adjacency,
+                       NodeSets& sets) {
   std::vector<int> order(nodes.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) { return nodes[static_cast<std::size_t>(a)].point.x() < nodes[static_cast<std::size_t>(b)].point.x(); });
+  const auto connected = [&](const SectionVertex& a, const SectionVertex& b) {
+    const std::vector<std::uint32_t> at_a = adjacency.patches_at(a), at_b = adjacency.patches_at(b);
+    return std::any_of(at_a.begin(), at_a.end(), [&](std::uint32_t p) {
+      return std::any_of(at_b.begin(), at_b.end(), [&](std::uint32_t q) { return adjacency.next_to(p, q); });
+    });
+  };
   for (std::size_t i = 0; i < order.size(); ++i) {
-    const Vec3& p = nodes[static_cast<std::size_t>(order[i])].point;
+    const SectionVertex& p = nodes[static_cast<std::size_t>(order[i])];
     for (std::size_t j = i + 1; j < order.size(); ++j) {
-      const Vec3& q = nodes[static_cast<std::size_t>(order[j])].point;
-      if (q.x() - p.x() > distance) break;
-      if ((q - p).norm() <= distance) sets.unite(order[i], order[j]);
+      const SectionVertex& q = nodes[static_cast<std::size_t>(order[j])];
+      if (q.point.x() - p.point.x() > distance) break;
+      if ((q.point - p.point).norm() <= distance && connected(p, q)) sets.unite(order[i], order[j]);
     }
   }
 }
@@ -176,7 +221,7 @@ PlaneSection plane_section(const PatchSet& set, const Vec3& point, const Vec3& n
   NodeSets sets(state.nodes.size());
   for (const auto& [a, b] : state.same_nodes) sets.unite(a, b);
   const double merge = std::max(set.tolerance(), 1e-12 * set.size());
-  unite_close_nodes(state.nodes, merge, sets);
+  unite_close_nodes(state.nodes, merge, Adjacency(set), sets);
   result.polylines = chain_pieces(state, sets);
   for (const SectionPiece& piece : state.pieces) result.error_bound = std::max(result.error_bound, piece.bound);
 

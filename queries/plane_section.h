@@ -49,6 +49,8 @@
 //     crossing itself at a saddle), within the same bound. A piece whose box exceeds the tolerance,
 //     a cell with a single crossing, and the cells left when a patch's search reaches 2^14 cells
 //     (a tangency along a curve inside a patch) are counted as uncertified.
+// Nodes within the set's tolerance are one when their patches are one or share an edge; patches
+// that only touch (the teapot's handle against its body) keep theirs apart.
 // T-junctions of the set are not followed: a polyline ends there (open).
 
 #include <cstdint>

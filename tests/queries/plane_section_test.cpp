@@ -304,17 +304,18 @@ TEST(PlaneSection, PatchInThePlaneIsReportedWhole) {
   expect_vertices_exact(set, across, Vec3(0, 0, 0.5), Vec3(1, 1, 0.2));
 }
 
-// The loops of a triangle mesh cut by the plane z = height, and their total length: each
-// triangle with corners on both sides gives a segment between points on its edges, the point
-// of an edge computed once per pair of welded positions so segments join exactly.
+// The loops of a triangle mesh cut by the plane through p with unit normal n, and their total
+// length: each triangle with corners on both sides gives a segment between points on its edges,
+// the point of an edge computed once per pair of welded positions so segments join exactly.
 struct MeshSlice {
   std::size_t loops = 0;
   std::size_t open = 0;
   double length = 0.0;
 };
 
-MeshSlice slice_mesh(const RenderMesh& mesh, double height) {
-  const auto side = [&](std::uint32_t v) { return mesh.positions[v].z() >= height; };  // on the plane: above
+MeshSlice slice_mesh(const RenderMesh& mesh, const Vec3& p, const Vec3& n) {
+  const auto height = [&](const Vec3& x) { return n.dot(x - p); };
+  const auto side = [&](std::uint32_t v) { return height(mesh.positions[v]) >= 0.0; };  // on the plane: above
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edge_segments;
   std::vector<std::array<std::pair<std::uint32_t, std::uint32_t>, 2>> ends;
   std::vector<std::array<Vec3, 2>> points;
@@ -327,7 +328,7 @@ MeshSlice slice_mesh(const RenderMesh& mesh, double height) {
       const std::uint32_t ia = mesh.position_ids[a], ib = mesh.position_ids[b];
       const Vec3& pa = ia < ib ? mesh.positions[a] : mesh.positions[b];
       const Vec3& pb = ia < ib ? mesh.positions[b] : mesh.positions[a];
-      const double s = (height - pa.z()) / (pb.z() - pa.z());
+      const double s = height(pa) / (height(pa) - height(pb));
       keys.emplace_back(std::min(ia, ib), std::max(ia, ib));
       cut.push_back(pa + s * (pb - pa));
     }
@@ -397,7 +398,7 @@ TEST(PlaneSection, TeapotSlicesAgreeWithItsTessellation) {
     EXPECT_EQ(section.uncertified_pieces, 0U);
     EXPECT_LE(section.error_bound, 1e-4);
     expect_vertices_exact(set, section, Vec3(0, 0, height), Vec3(0, 0, 1));
-    const MeshSlice slice = slice_mesh(mesh.mesh, height);
+    const MeshSlice slice = slice_mesh(mesh.mesh, Vec3(0, 0, height), Vec3(0, 0, 1));
     std::size_t closed = 0;
     double total = 0.0;  // the lengths agree to 1e-3 (measured: 3e-5 to 1e-4)
     for (const SectionPolyline& line : section.polylines) {
@@ -410,6 +411,49 @@ TEST(PlaneSection, TeapotSlicesAgreeWithItsTessellation) {
     EXPECT_NEAR(total, slice.length, 1e-3 * slice.length);
     expect_open_ends_on_open_edges(set, section);
   }
+}
+
+TEST(PlaneSection, HandleSectionEndsOnItsOpenEdgeBesideTheBody) {
+  // The teapot's handle (patches 12 to 15) touches its body at (-2, 0, 0.9) without sharing an
+  // edge there, its open edge v1 leaving the point tangent to the body's edge. This plane (from
+  // TeapotRandomPlanesAreCertified) passes 8e-6 from the point: the handle's section ends on that
+  // open edge some 1e-10 from a crossing of the body's section, closer than the set's tolerance.
+  // The two are different points of different curves: the body's loop stays closed and the
+  // handle's arc ends on its open edge, as in the tessellation's slice.
+  const PatchSet set(read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt"));
+  const Vec3 touch(-2, 0, 0.9), p(-1.299, -0.81, 1.0256), normal(-0.654, -0.715, -0.961);
+  ASSERT_EQ(set.touching_points().size(), 1U);
+  ASSERT_LE((set.touching_points()[0].point - touch).norm(), set.tolerance());
+  ASSERT_LE(std::abs(normal.normalized().dot(touch - p)), 1e-5);
+  const double tolerance = 1e-4;
+  const PlaneSection section = plane_section(set, p, normal, tolerance);
+  EXPECT_EQ(section.uncertified_pieces, 0U);
+  EXPECT_LE(section.error_bound, tolerance);
+  expect_vertices_exact(set, section, p, normal);
+  expect_open_ends_on_open_edges(set, section);
+  ASSERT_EQ(section.polylines.size(), 2U);
+  const bool first_closed = section.polylines[0].closed;
+  ASSERT_NE(first_closed, section.polylines[1].closed);
+  const SectionPolyline& loop = section.polylines[first_closed ? 0 : 1];
+  const SectionPolyline& arc = section.polylines[first_closed ? 1 : 0];
+  const auto on_handle = [](const SectionVertex& v) { return v.patch >= 12 && v.patch <= 15; };
+  EXPECT_TRUE(std::none_of(loop.vertices.begin(), loop.vertices.end(), on_handle));
+  EXPECT_TRUE(std::all_of(arc.vertices.begin(), arc.vertices.end(), on_handle));
+  // One end of the arc is within the set's tolerance of the loop (the case that joined them).
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const SectionVertex* end : {&arc.vertices.front(), &arc.vertices.back()}) {
+    EXPECT_EQ(end->patch, 15U);
+    EXPECT_EQ(end->uv.y(), 1.0);
+    for (const SectionVertex& v : loop.vertices) nearest = std::min(nearest, (v.point - end->point).norm());
+  }
+  EXPECT_LE(nearest, set.tolerance());
+  TessellationOptions options;
+  options.tolerance = 1e-4;
+  options.measure = false;
+  const MeshSlice slice = slice_mesh(tessellate(set, options).mesh, p, normal.normalized());
+  EXPECT_EQ(slice.loops, 1U);
+  EXPECT_EQ(slice.open, 1U);
+  EXPECT_NEAR(length(loop) + length(arc), slice.length, 1e-3 * slice.length);
 }
 
 // Random planes through the teapot's box: certified, on the plane, open only at open edges.
