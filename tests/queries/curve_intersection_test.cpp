@@ -81,6 +81,19 @@ TEST(CurveIntersection, InflectionTangentIsOneTangentialPointOfMultiplicityThree
   EXPECT_LE(std::abs(result.points[0].s - 0.5), result.points[0].s_bound);  // x = 3/2 on the line from x = -1 to 4
 }
 
+TEST(CurveIntersection, RootsOnSubdivisionSeamsAreReportedOnce) {
+  // x = t, y = 64 (t - 1/4)(t - 1/2)(t - 3/4): the roots lie where the search halves [0, 1].
+  const std::vector<mpq_class> roots{mpq_class(1, 4), mpq_class(1, 2), mpq_class(3, 4)};
+  std::vector<mpq_class> power = exact::power_from_roots(roots);
+  for (mpq_class& c : power) c *= 64;
+  const std::vector<double> y = exact::nearest_doubles(exact::power_to_bernstein(power));
+  const BezierCurve2 cubic({Vec2(0, y[0]), Vec2(1.0 / 3, y[1]), Vec2(2.0 / 3, y[2]), Vec2(1, y[3])});
+  expect_matches_exact_roots(cubic, Vec2(-1, 0), Vec2(2, 0));
+  const auto result = intersect_curves(cubic, BezierCurve2({Vec2(-1, 0), Vec2(2, 0)}));
+  ASSERT_EQ(result.points.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(result.points[k].point.x() - 0.25 * (k + 1)), 1e-15);
+}
+
 TEST(CurveIntersection, NearParallelLinesMeetOnceWithinTheBound) {
   // (t, 2^-30 t) and (s, 2^-32 + s (2^-30 - 2^-32 - 2^-33)) cross at t = s = 2/3, at an angle of 3 2^-33.
   const BezierCurve2 first({Vec2(0, 0), Vec2(1, 0x1p-30)});
