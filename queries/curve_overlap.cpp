@@ -86,30 +86,31 @@ std::optional<std::pair<double, double>> lies_on(const CurvePiece<Dim>& piece, c
   return std::pair{y0, y1};
 }
 
+std::vector<CurveOverlap> merge_touching(std::vector<CurveOverlap> list, double t_margin, double s_margin) {
+  std::sort(list.begin(), list.end(), [](const CurveOverlap& x, const CurveOverlap& y) { return x.t0 < y.t0; });
+  std::vector<CurveOverlap> result;
+  for (const CurveOverlap& o : list) {
+    if (!result.empty()) {
+      CurveOverlap& last = result.back();
+      const bool same_direction = (last.s1 > last.s0) == (o.s1 > o.s0);
+      const double lo = std::min(o.s0, o.s1), hi = std::max(o.s0, o.s1);
+      const double last_lo = std::min(last.s0, last.s1), last_hi = std::max(last.s0, last.s1);
+      if (same_direction && o.t0 <= last.t1 + t_margin && lo <= last_hi + s_margin && last_lo <= hi + s_margin) {
+        if (o.t1 > last.t1) last.t1 = o.t1, last.s1 = o.s1;
+        continue;
+      }
+    }
+    result.push_back(o);
+  }
+  return result;
+}
+
 template <int Dim>
 std::vector<CurveOverlap> merged_overlaps(std::vector<CurveOverlap> overlaps, const RationalBezierCurve<Dim>& first,
                                           const RationalBezierCurve<Dim>& second, double match) {
   const double t_margin = 1e-12 * (first.b() - first.a());
   const double s_margin = 1e-12 * (second.b() - second.a());
-  auto merge = [&](std::vector<CurveOverlap> list) {
-    std::sort(list.begin(), list.end(), [](const CurveOverlap& x, const CurveOverlap& y) { return x.t0 < y.t0; });
-    std::vector<CurveOverlap> result;
-    for (const CurveOverlap& o : list) {
-      if (!result.empty()) {
-        CurveOverlap& last = result.back();
-        const bool same_direction = (last.s1 > last.s0) == (o.s1 > o.s0);
-        const double lo = std::min(o.s0, o.s1), hi = std::max(o.s0, o.s1);
-        const double last_lo = std::min(last.s0, last.s1), last_hi = std::max(last.s0, last.s1);
-        if (same_direction && o.t0 <= last.t1 + t_margin && lo <= last_hi + s_margin && last_lo <= hi + s_margin) {
-          if (o.t1 > last.t1) last.t1 = o.t1, last.s1 = o.s1;
-          continue;
-        }
-      }
-      result.push_back(o);
-    }
-    return result;
-  };
-  overlaps = merge(std::move(overlaps));
+  overlaps = merge_touching(std::move(overlaps), t_margin, s_margin);
   // Continue each overlap to the end of one of the curves (analytic continuation).
   for (CurveOverlap& o : overlaps) {
     const double direction = o.s1 > o.s0 ? 1.0 : -1.0;
@@ -132,7 +133,7 @@ std::vector<CurveOverlap> merged_overlaps(std::vector<CurveOverlap> overlaps, co
       }
     }
   }
-  return merge(std::move(overlaps));
+  return merge_touching(std::move(overlaps), t_margin, s_margin);
 }
 
 #define PATCHWORK_INSTANTIATE(D)                                                                                     \

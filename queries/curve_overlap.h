@@ -28,6 +28,10 @@ template <int Dim>
 std::optional<std::pair<double, double>> lies_on(const CurvePiece<Dim>& piece, const RationalBezierCurve<Dim>& other,
                                                  const CurvePiece<Dim>& hint, double match);
 
+/// Merges overlaps that touch: same direction, t intervals meeting within t_margin and s intervals
+/// within s_margin. Sorted by t0.
+std::vector<CurveOverlap> merge_touching(std::vector<CurveOverlap> overlaps, double t_margin, double s_margin);
+
 /// Merges overlaps that touch (same direction, t and s intervals meeting) and continues each to
 /// where the first or the second curve ends. Sorted by t0.
 template <int Dim>

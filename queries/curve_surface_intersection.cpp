@@ -99,7 +99,7 @@ struct Triple {
   PatchPiece patch;
 };
 
-struct Leaf {
+struct SurfaceLeaf {
   Box3 box;
 };
 
@@ -117,9 +117,9 @@ bool contains(const Box3& outer, const Box3& inner) {
   return true;
 }
 
-class Search {
+class SurfaceSearch {
  public:
-  Search(const RationalBezierCurve3& curve, const RationalBezierPatch& patch, std::uint32_t index)
+  SurfaceSearch(const RationalBezierCurve3& curve, const RationalBezierPatch& patch, std::uint32_t index)
       : C_(curve), F_(patch), index_(index), n_(patch.degree_u()), m_(patch.degree_v()) {
     double scale = 0.0, w_min = std::numeric_limits<double>::infinity(), w_max = 0.0;
     for (int i = 0; i <= curve.degree(); ++i) {
@@ -150,7 +150,7 @@ class Search {
       if (!settle(triple)) split(std::move(triple), stack);
     }
     std::vector<Box3> boxes;
-    for (const Leaf& leaf : leaves_) boxes.push_back(leaf.box);
+    for (const SurfaceLeaf& leaf : leaves_) boxes.push_back(leaf.box);
     for (const auto& group : detail::touching_groups<3>(boxes, 0.0)) report_contact(group);
     return std::move(hits_);
   }
@@ -357,7 +357,7 @@ class Search {
   double evaluation_error_ = 0.0;
   std::vector<CurveSurfaceHit> hits_;
   std::vector<Box3> unique_boxes_;
-  std::vector<Leaf> leaves_;
+  std::vector<SurfaceLeaf> leaves_;
 };
 
 void sort_by_t(std::vector<CurveSurfaceHit>& hits) {
@@ -365,25 +365,31 @@ void sort_by_t(std::vector<CurveSurfaceHit>& hits) {
 }
 
 CurveSurfaceHits on_patch(const RationalBezierCurve3& curve, const RationalBezierPatch& patch) {
-  Search search(curve, patch, 0);
+  SurfaceSearch search(curve, patch, 0);
   CurveSurfaceHits result{search.run(), search.eps()};
   sort_by_t(result.hits);
   return result;
 }
 
-CurveSurfaceHits on_set(const RationalBezierCurve3& curve, const PatchSet& set) {
+}  // namespace
+
+namespace detail {
+
+CurveSurfaceHits intersect_pieces_with_set(const std::vector<RationalBezierCurve3>& pieces, const PatchSet& set) {
   CurveSurfaceHits result;
   std::vector<CurveSurfaceHit> all;
   for (std::uint32_t p = 0; p < set.count(); ++p) {
     const RationalBezierPatch patch = set.rational_patch(p);
-    Search search(curve, patch, p);
-    result.eps = std::max(result.eps, search.eps());
-    const auto hits = search.run();
-    all.insert(all.end(), hits.begin(), hits.end());
+    for (const RationalBezierCurve3& piece : pieces) {
+      SurfaceSearch search(piece, patch, p);
+      result.eps = std::max(result.eps, search.eps());
+      const auto hits = search.run();
+      all.insert(all.end(), hits.begin(), hits.end());
+    }
   }
   // One hit per point of the curve: hits whose t intervals meet are the same (the lowest patch).
   std::stable_sort(all.begin(), all.end(), [](const CurveSurfaceHit& x, const CurveSurfaceHit& y) { return x.patch < y.patch; });
-  const double slack = domain_slack * (curve.b() - curve.a());
+  const double slack = domain_slack * (pieces.back().b() - pieces.front().a());
   for (const CurveSurfaceHit& hit : all) {
     const bool seen = std::any_of(result.hits.begin(), result.hits.end(), [&](const CurveSurfaceHit& kept) {
       return std::abs(kept.t - hit.t) <= kept.t_bound + hit.t_bound + slack;
@@ -392,6 +398,14 @@ CurveSurfaceHits on_set(const RationalBezierCurve3& curve, const PatchSet& set) 
   }
   sort_by_t(result.hits);
   return result;
+}
+
+}  // namespace detail
+
+namespace {
+
+CurveSurfaceHits on_set(const RationalBezierCurve3& curve, const PatchSet& set) {
+  return detail::intersect_pieces_with_set(std::vector<RationalBezierCurve3>{curve}, set);
 }
 
 }  // namespace

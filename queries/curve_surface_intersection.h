@@ -86,4 +86,11 @@ CurveSurfaceHits intersect_curve_surface(const BezierCurve3& curve, const PatchS
 /// The hits of a rational curve on a patch set. \throws NumericalError.
 CurveSurfaceHits intersect_curve_surface(const RationalBezierCurve3& curve, const PatchSet& set);
 
+namespace detail {
+
+/// The hits on a patch set of the curve made of `pieces` end to end (each with its own interval).
+/// \pre pieces is not empty.
+CurveSurfaceHits intersect_pieces_with_set(const std::vector<RationalBezierCurve3>& pieces, const PatchSet& set);
+
+}  // namespace detail
 }  // namespace patchwork

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "curves/bernstein.h"
 #include "queries/intersection_kernel.h"
@@ -54,18 +55,35 @@ void monotone_pieces(const RationalBezierCurve<Dim>& curve, double t0, double t1
   monotone_pieces(curve, middle, t1, depth + 1, pieces);
 }
 
+}  // namespace
+
+namespace detail {
+
 template <int Dim>
-CurveIntersections<Dim> self_intersections_of(const RationalBezierCurve<Dim>& curve, double tolerance) {
+CurveIntersections<Dim> self_intersections_of_pieces(const std::vector<RationalBezierCurve<Dim>>& curve_pieces, double tolerance) {
   std::vector<RationalBezierCurve<Dim>> pieces;
-  monotone_pieces(curve, curve.a(), curve.b(), 0, pieces);
-  const double shortest = std::ldexp(curve.b() - curve.a(), -max_depth);
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const auto& curve : curve_pieces) {
+    monotone_pieces(curve, curve.a(), curve.b(), 0, pieces);
+    shortest = std::min(shortest, std::ldexp(curve.b() - curve.a(), -max_depth));
+  }
   CurveIntersections<Dim> result;
+  // A closed curve's start and end meet where it closes, which is no crossing.
+  const RationalBezierCurve<Dim>& first = curve_pieces.front();
+  const RationalBezierCurve<Dim>& last = curve_pieces.back();
+  const double a = first.a(), b = last.b();
+  double scale = 0.0;
+  for (const auto& curve : curve_pieces) {
+    for (int i = 0; i <= curve.degree(); ++i) scale = std::max(scale, curve.control_point(i).cwiseAbs().maxCoeff());
+  }
+  const bool closed = (first.evaluate(a) - last.evaluate(b)).norm() <= tolerance + detail::rounding_level(scale, 1);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     for (std::size_t j = i + 1; j < pieces.size(); ++j) {
       CurveIntersections<Dim> pair = detail::intersect_rational(pieces[i], pieces[j], tolerance);
       result.eps = std::max(result.eps, pair.eps);
       for (const CurveIntersection<Dim>& x : pair.points) {
         if (x.s - x.t <= x.t_bound + x.s_bound + 4.0 * shortest) continue;  // the pieces' shared end
+        if (closed && x.t - a <= x.t_bound + 4.0 * shortest && b - x.s <= x.s_bound + 4.0 * shortest) continue;
         const bool seen = std::any_of(result.points.begin(), result.points.end(), [&](const CurveIntersection<Dim>& y) {
           return std::abs(x.t - y.t) <= x.t_bound + y.t_bound + shortest && std::abs(x.s - y.s) <= x.s_bound + y.s_bound + shortest;
         });
@@ -87,6 +105,18 @@ CurveIntersections<Dim> self_intersections_of(const RationalBezierCurve<Dim>& cu
   }
   result.overlaps = std::move(merged);
   return result;
+}
+
+template CurveIntersections<2> self_intersections_of_pieces(const std::vector<RationalBezierCurve<2>>&, double);
+template CurveIntersections<3> self_intersections_of_pieces(const std::vector<RationalBezierCurve<3>>&, double);
+
+}  // namespace detail
+
+namespace {
+
+template <int Dim>
+CurveIntersections<Dim> self_intersections_of(const RationalBezierCurve<Dim>& curve, double tolerance) {
+  return detail::self_intersections_of_pieces(std::vector<RationalBezierCurve<Dim>>{curve}, tolerance);
 }
 
 }  // namespace

@@ -15,8 +15,13 @@
 // cusp: its branches meet only at the cusp point itself, which is no crossing. Answers found on
 // both sides of a seam (bounds overlapping) are reported once.
 //
+// A closed curve (C(a) = C(b) within tolerance + eps) meets itself where it closes: an answer at
+// t = a, s = b (within its bounds) is that closing and is dropped.
+//
 // Overlaps: a curve that runs back over itself (C(t) = C(s) on a whole interval, e.g. a
 // degenerate cubic retracing a line) gives overlaps with t0 < t1 and s0 > s1.
+
+#include <vector>
 
 #include "queries/curve_intersection.h"
 
@@ -33,4 +38,12 @@ CurveIntersections<3> self_intersections(const BezierCurve3& curve, double toler
 /// The same for a rational space curve.
 CurveIntersections<3> self_intersections(const RationalBezierCurve3& curve, double tolerance);
 
+namespace detail {
+
+/// The self-intersections of the curve made of `pieces` end to end (each keeping its own
+/// parameter interval, in order): every piece split into monotone pieces, every pair intersected.
+template <int Dim>
+CurveIntersections<Dim> self_intersections_of_pieces(const std::vector<RationalBezierCurve<Dim>>& pieces, double tolerance);
+
+}  // namespace detail
 }  // namespace patchwork
