@@ -289,6 +289,31 @@ class Search {
     }
   }
 
+  // Where the curves touch, [A', -B'] has rank 1 and Gauss-Newton may stall: minimise
+  // d(t) = min over s of |A(t) - B(s)| instead, by golden-section search on t within the contact's
+  // box, each d(t) by Newton on s.
+  void refine_along_first(const Box2& hull, double& t, double& s, double& best) const {
+    auto foot = [&](double at, double from) {
+      const Point<Dim> a = A_.evaluate(at);
+      double distance = (B_.evaluate(from) - a).norm();
+      for (int iteration = 0; iteration < 20; ++iteration) {
+        const auto [b, db, ddb] = point_and_derivatives(B_, from);
+        const double slope = db.dot(b - a), curvature = ddb.dot(b - a) + db.squaredNorm();
+        if (!(curvature > 0.0)) break;
+        const double next = std::clamp(from - slope / curvature, hull[1].lo, hull[1].hi);
+        const double d = (B_.evaluate(next) - a).norm();
+        if (!(d < distance)) break;
+        distance = d, from = next;
+      }
+      return std::pair{distance, from};
+    };
+    golden_section(hull[0].lo, hull[0].hi, [&](double at) {
+      const auto [d, from] = foot(at, s);
+      if (d < best) best = d, t = at, s = from;
+      return d;
+    });
+  }
+
   // The contact of a group of leaves: its closest point by Gauss-Newton inside the group's box.
   void report_contact(const std::vector<std::size_t>& group) {
     Box2 hull = leaves_[group[0]].box;
@@ -321,6 +346,7 @@ class Search {
         if (damping > 1e6) break;
       }
     }
+    if (!(best <= reach_)) refine_along_first(hull, t, s, best);
     if (!(best <= reach_)) return;
     for (const auto& root : unique_boxes_) {
       if (contains(root, t, s)) return;

@@ -27,7 +27,9 @@
 // points within that of the chord) and, in 2D, their chords are parallel within a sine of 1e-4
 // (or a piece has been halved 44 times); such pairs are leaves. Leaves whose parameter boxes touch
 // form one contact; it is reported once, at the (t, s) in its boxes where |A(t) - B(s)| is
-// smallest (Gauss-Newton from the best leaf), if that distance is <= tolerance + eps, with
+// smallest (Gauss-Newton from the best leaf; where that stalls, as it can at a tangency where
+// [A', -B'] has rank 1, golden-section search on t of min_s |A(t) - B(s)|), if that distance is
+// <= tolerance + eps, with
 // t_bound, s_bound covering every leaf box of the contact: every (t', s') of that contact with
 // |A(t') - B(s')| <= tolerance + eps satisfies |t' - t| <= t_bound, |s' - s| <= s_bound.
 // In 2D such a contact is tangential (the curves touch, or cross at an angle rounding cannot

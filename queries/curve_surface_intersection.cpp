@@ -310,6 +310,33 @@ class SurfaceSearch {
     return true;
   }
 
+  // Where the curve touches the surface, G's Jacobian has rank 2 and Gauss-Newton stalls: minimise
+  // d(t) = min over (u, v) of |F(u, v) - C(t)| instead, by golden-section search on t within the
+  // contact's box, each d(t) by Gauss-Newton on (u, v) (regular: F_u x F_v != 0 off poles).
+  void refine_along_curve(const Box3& hull, Vec3& x, double& best) const {
+    auto foot = [&](double t, Eigen::Vector2d uv) {
+      const Vec3 c = C_.evaluate(t);
+      double distance = (F_.evaluate(uv[0], uv[1]) - c).norm();
+      for (int iteration = 0; iteration < 20; ++iteration) {
+        const PartialDerivatives<3> D = partial_derivatives(F_, uv[0], uv[1], 1);
+        Eigen::Matrix<double, 3, 2> J;
+        J << D.at(1, 0), D.at(0, 1);
+        const Eigen::Vector2d step = (J.transpose() * J).ldlt().solve(-J.transpose() * (D.at(0, 0) - c));
+        if (!step.allFinite()) break;
+        const Eigen::Vector2d next(std::clamp(uv[0] + step[0], hull[1].lo, hull[1].hi), std::clamp(uv[1] + step[1], hull[2].lo, hull[2].hi));
+        const double d = (F_.evaluate(next[0], next[1]) - c).norm();
+        if (!(d < distance)) break;
+        distance = d, uv = next;
+      }
+      return std::pair{distance, uv};
+    };
+    detail::golden_section(hull[0].lo, hull[0].hi, [&](double t) {
+      const auto [d, uv] = foot(t, Eigen::Vector2d(x[1], x[2]));
+      if (d < best) best = d, x = Vec3(t, uv[0], uv[1]);
+      return d;
+    });
+  }
+
   // The contact of a group of leaves: its closest point by Gauss-Newton inside the group's box.
   void report_contact(const std::vector<std::size_t>& group) {
     Box3 hull = leaves_[group[0]].box;
@@ -339,6 +366,7 @@ class SurfaceSearch {
         break;
       }
     }
+    if (!(best <= eps_)) refine_along_curve(hull, x, best);
     if (!(best <= eps_)) return;
     for (const Box3& root : unique_boxes_) {
       if (contains(root, x)) return;

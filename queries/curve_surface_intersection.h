@@ -26,7 +26,8 @@
 // (its control points in a slab of width eps about its plane) and the chord is parallel to that
 // plane within a sine of 1e-4, or the pieces have been halved 44 times. Such triples whose boxes
 // touch form one contact, reported once at the point of its boxes where |F(u, v) - C(t)| is
-// smallest (Gauss-Newton), if that is <= eps, with bounds covering all its boxes, and
+// smallest (Gauss-Newton; where that stalls, golden-section search on t of min_(u,v) |G|), if
+// that is <= eps, with bounds covering all its boxes, and
 // tangential = true: every (t', u', v') of the contact with |G| <= eps is within the bounds.
 // A curve lying in the surface is one such contact, whose bounds span it.
 //

@@ -31,6 +31,7 @@
 // K(X) disjoint from X: G has no zero in X.
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -120,6 +121,24 @@ KrawczykOutcome krawczyk(const std::array<Interval, N>& X, const Eigen::Matrix<d
 /// connected through chains of touching boxes: each group as indices into `boxes`.
 template <int N>
 std::vector<std::vector<std::size_t>> touching_groups(const std::vector<std::array<Interval, N>>& boxes, double margin);
+
+/// Golden-section search for a minimum of value(t) on [lo, hi]: 80 steps, then both ends;
+/// `value` keeps the best it has seen (and whatever it carries from one call to the next).
+template <class Value>
+void golden_section(double lo, double hi, Value&& value) {
+  const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
+  const double a = lo, b = hi;
+  for (int iteration = 0; iteration < 80 && hi > lo; ++iteration) {
+    const double t1 = hi - ratio * (hi - lo), t2 = lo + ratio * (hi - lo);
+    if (value(t1) <= value(t2)) {
+      hi = t2;
+    } else {
+      lo = t1;
+    }
+  }
+  value(a);
+  value(b);
+}
 
 /// The rounding level of coordinates up to `scale` in magnitude after work of degree n:
 /// 64 (n + 1) u scale, u = 2^-53.

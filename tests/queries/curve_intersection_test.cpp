@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "core/errors.h"
@@ -194,15 +195,24 @@ BezierCurve2 cubic(const std::vector<int>& v) {
 
 rc::Gen<std::vector<int>> cubic_coordinates() { return rc::gen::container<std::vector<int>>(8, rc::gen::inRange(-16, 17)); }
 
+// A random cubic and a line through a grid point in a direction of small integers, from q0 to q1
+// far enough to cross the cubic's box.
+std::tuple<BezierCurve2, Vec2, Vec2> cubic_and_line() {
+  const BezierCurve2 curve = cubic(*cubic_coordinates());
+  const double x = *rc::gen::inRange(-8, 9) / 8.0;
+  const double y = *rc::gen::inRange(-8, 9) / 8.0;
+  const double dx = *rc::gen::inRange(-4, 5);
+  const double dy = *rc::gen::inRange(-4, 5);
+  RC_PRE(dx != 0.0 || dy != 0.0);
+  const Vec2 through(x, y), d(dx, dy);
+  return {curve, through - 4 * d, through + 4 * d};
+}
+
 // Every exact root in [0, 1] lies within the bound of a reported point, the points' parameter
 // intervals are disjoint (each root reported once), a transversal point's interval holds exactly
 // one root (a sign change), and a tangential one is a contact within rounding.
 RC_GTEST_PROP(CurveIntersection, LineAgainstCubicMatchesExactRoots, ()) {
-  const BezierCurve2 curve = cubic(*cubic_coordinates());
-  const Vec2 through(*rc::gen::inRange(-8, 9) / 8.0, *rc::gen::inRange(-8, 9) / 8.0);
-  const Vec2 d(*rc::gen::inRange(-4, 5), *rc::gen::inRange(-4, 5));
-  RC_PRE(d.norm() > 0.0);
-  const Vec2 q0 = through - 4 * d, q1 = through + 4 * d;
+  const auto [curve, q0, q1] = cubic_and_line();
   const exact::Polynomial f = line_polynomial(curve, q0, q1);
   RC_PRE(!f.empty());
   const auto result = intersect_curves(curve, BezierCurve2({q0, q1}));
@@ -220,6 +230,26 @@ RC_GTEST_PROP(CurveIntersection, LineAgainstCubicMatchesExactRoots, ()) {
     covered += roots;
   }
   RC_ASSERT(covered == exact::distinct_roots(f, 0, 1));
+}
+
+// The same cubic and line lifted into 3D (z = 0, then both turned by the same exact rotation
+// (3/5, 4/5) about x) with a tolerance of 1e-9: every exact root lies within the bound of a
+// reported contact, and every contact is within the tolerance.
+RC_GTEST_PROP(CurveIntersection, SpaceLineAgainstCubicMissesNoRoot, ()) {
+  const auto [planar, q0, q1] = cubic_and_line();
+  const exact::Polynomial f = line_polynomial(planar, q0, q1);
+  RC_PRE(!f.empty());
+  auto lift = [](const Vec2& p) { return Vec3(p.x(), 0.6 * p.y(), 0.8 * p.y()); };
+  std::vector<Vec3> points;
+  for (const Vec2& p : planar.control_points()) points.push_back(lift(p));
+  const double tolerance = 1e-9;
+  const auto result = intersect_curves(BezierCurve3(points), BezierCurve3({lift(q0), lift(q1)}), tolerance);
+  int covered = 0;
+  for (const auto& x : result.points) {
+    RC_ASSERT(x.distance <= tolerance);
+    covered += exact::distinct_roots(f, mpq_class(std::max(0.0, x.t - x.t_bound)), mpq_class(std::min(1.0, x.t + x.t_bound)));
+  }
+  RC_ASSERT(covered >= exact::distinct_roots(f, 0, 1));
 }
 
 // Dense sampling: where the polylines through 512 samples of each curve cross so robustly that

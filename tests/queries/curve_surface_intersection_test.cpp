@@ -144,6 +144,21 @@ RC_GTEST_PROP(CurveSurfaceIntersection, CubicAgainstPlaneMatchesExactRootCount, 
   RC_ASSERT(covered == exact::distinct_roots(f, 0, 1));
 }
 
+TEST(CurveSurfaceIntersection, CubicTouchingThePlaneAtItsEndIsOneTangentialHit) {
+  // z(t) = -(1 - t)^2 (1 + 2t): a double root at the end t = 1, where the curve arrives parallel
+  // to the plane z = 0 (found by the property above; Gauss-Newton alone stalled at 2.2e-13).
+  std::vector<Vec3> plane;
+  for (int j = 0; j <= 3; ++j) {
+    for (int i = 0; i <= 3; ++i) plane.emplace_back(-4.0 + 8.0 * i / 3.0, -4.0 + 8.0 * j / 3.0, 0.0);
+  }
+  const BezierCurve3 cubic({Vec3(-2, -2, -1), Vec3(-2, -2, -1), Vec3(0.625, -1.875, 0), Vec3(-2, -2, 0)});
+  const CurveSurfaceHits result = intersect_curve_surface(cubic, BezierPatch3(3, 3, plane));
+  ASSERT_EQ(result.hits.size(), 1u);
+  EXPECT_TRUE(result.hits[0].tangential);
+  EXPECT_LE(1.0 - result.hits[0].t, result.hits[0].t_bound);
+  EXPECT_LE(result.hits[0].distance, result.eps);
+}
+
 TEST(CurveSurfaceIntersection, RationalCurveOnRationalPatch) {
   // The circle of radius 0.6 about (0.5, 0.4, 0) in the plane y = 0.4 meets the unit sphere where
   // x^2 + z^2 = 0.84 and (x - 0.5)^2 + z^2 = 0.36: x = 0.73, z = sqrt(0.3071), at the angle
