@@ -232,6 +232,31 @@ RC_GTEST_PROP(CurveIntersection, LineAgainstCubicMatchesExactRoots, ()) {
   RC_ASSERT(covered == exact::distinct_roots(f, 0, 1));
 }
 
+// A rational cubic (weights 1..4) against a line: the hits are the roots in [0, 1] of
+// n . (H(t) - w(t) q0) = sum_i w_i n . (P_i - q0) B_i^3(t) (w > 0), counted exactly; each
+// transversal point's interval holds exactly one.
+RC_GTEST_PROP(CurveIntersection, LineAgainstRationalCubicMatchesExactRoots, ()) {
+  const auto [polynomial, q0, q1] = cubic_and_line();
+  const std::vector<int> weights = *rc::gen::container<std::vector<int>>(4, rc::gen::inRange(1, 5));
+  const RationalBezierCurve2 curve(polynomial.control_points(), std::vector<double>(weights.begin(), weights.end()));
+  const mpq_class n0 = mpq_class(q0.y()) - mpq_class(q1.y()), n1 = mpq_class(q1.x()) - mpq_class(q0.x());
+  std::vector<mpq_class> c;
+  for (int i = 0; i < 4; ++i) {
+    const Vec2& p = polynomial.control_points()[i];
+    c.push_back(weights[i] * (n0 * (mpq_class(p.x()) - mpq_class(q0.x())) + n1 * (mpq_class(p.y()) - mpq_class(q0.y()))));
+  }
+  const exact::Polynomial f = exact::bernstein_to_power(c);
+  RC_PRE(!exact::trimmed(f).empty());
+  const auto result = intersect_curves(curve, as_rational(BezierCurve2({q0, q1})));
+  int covered = 0;
+  for (const auto& x : result.points) {
+    const int roots = exact::distinct_roots(f, mpq_class(std::max(0.0, x.t - x.t_bound)), mpq_class(std::min(1.0, x.t + x.t_bound)));
+    if (!x.tangential) RC_ASSERT(roots == 1);
+    covered += roots;
+  }
+  RC_ASSERT(covered == exact::distinct_roots(f, 0, 1));
+}
+
 // The same cubic and line lifted into 3D (z = 0, then both turned by the same exact rotation
 // (3/5, 4/5) about x) with a tolerance of 1e-9: every exact root lies within the bound of a
 // reported contact, and every contact is within the tolerance.
