@@ -172,6 +172,23 @@ TEST(CurveIntersection, CurveAgainstItsOwnPieceIsOneOverlap) {
   EXPECT_NEAR(partial.overlaps[0].s1, 2.0 / 3.0, 1e-9);
 }
 
+TEST(CurveIntersection, CircleArcAgainstItsSubArcIsOneOverlap) {
+  // The quarter circle and the arc from pi/8 to 5 pi/16 of the same circle, each from circle_arc:
+  // weights (1, cos(phi/2), 1) on both, parametrisations related by a Moebius map, equal in
+  // standard form. On the quarter, angle theta is at t = (tan((theta - pi/4) / 2) / tan(pi/8) + 1) / 2.
+  const double pi = std::numbers::pi;
+  const auto quarter = circle_arc(Vec2(0.5, -0.25), 2.0, 0.0, pi / 2);
+  const auto piece = circle_arc(Vec2(0.5, -0.25), 2.0, pi / 8, 5 * pi / 16);
+  const auto result = intersect_curves(quarter[0], piece[0]);
+  EXPECT_TRUE(result.points.empty());
+  ASSERT_EQ(result.overlaps.size(), 1u);
+  auto t_of = [&](double theta) { return (std::tan((theta - pi / 4) / 2) / std::tan(pi / 8) + 1) / 2; };
+  EXPECT_NEAR(result.overlaps[0].t0, t_of(pi / 8), 1e-9);
+  EXPECT_NEAR(result.overlaps[0].t1, t_of(5 * pi / 16), 1e-9);
+  EXPECT_NEAR(result.overlaps[0].s0, 0.0, 1e-9);
+  EXPECT_NEAR(result.overlaps[0].s1, 1.0, 1e-9);
+}
+
 TEST(CurveIntersection, SpaceCurvesWithinTheTolerance) {
   // Two space lines 1e-7 apart at their closest points: within 1e-6 they meet, within 1e-8 not.
   const BezierCurve3 first({Vec3(-1, 0, 0), Vec3(1, 0, 0)});
@@ -183,6 +200,12 @@ TEST(CurveIntersection, SpaceCurvesWithinTheTolerance) {
   EXPECT_NEAR(near.points[0].distance, 1e-7, 1e-12);
   EXPECT_FALSE(near.points[0].tangential);
   EXPECT_TRUE(intersect_curves(first, second, 1e-8).points.empty());
+  // A parabola touching a line in space (z = 0 plane turned about x): one tangential contact.
+  const BezierCurve3 parabola({Vec3(0, 0.6, 0.8), Vec3(0.5, -0.6, -0.8), Vec3(1, 0.6, 0.8)});
+  const auto touching = intersect_curves(parabola, BezierCurve3({Vec3(-1, 0, 0), Vec3(2, 0, 0)}), 1e-9);
+  ASSERT_EQ(touching.points.size(), 1u);
+  EXPECT_TRUE(touching.points[0].tangential);
+  EXPECT_LE(std::abs(touching.points[0].t - 0.5), touching.points[0].t_bound);
   EXPECT_THROW(intersect_curves(first, second, 0.0), InvalidInput);
 }
 
