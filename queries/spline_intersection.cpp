@@ -82,6 +82,16 @@ CurveIntersections<2> self_intersections(const NurbsCurve2& curve) {
   return detail::self_intersections_of_pieces(rational_pieces(curve), 0.0);
 }
 
+CurveIntersections<3> self_intersections(const BSplineCurve3& curve, double tolerance) {
+  require_positive(tolerance, "self_intersections", "tolerance");
+  return detail::self_intersections_of_pieces(rational_pieces(curve), tolerance);
+}
+
+CurveIntersections<3> self_intersections(const NurbsCurve3& curve, double tolerance) {
+  require_positive(tolerance, "self_intersections", "tolerance");
+  return detail::self_intersections_of_pieces(rational_pieces(curve), tolerance);
+}
+
 CurveSurfaceHits intersect_curve_surface(const BSplineCurve3& curve, const PatchSet& set) {
   return detail::intersect_pieces_with_set(rational_pieces(curve), set);
 }

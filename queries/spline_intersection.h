@@ -33,6 +33,12 @@ CurveIntersections<2> self_intersections(const BSplineCurve2& curve);
 /// The self-intersections of a planar NURBS curve.
 CurveIntersections<2> self_intersections(const NurbsCurve2& curve);
 
+/// The pairs t < s where a space B-spline curve comes within `tolerance` of itself.
+/// \throws InvalidInput if tolerance is not finite and positive.
+CurveIntersections<3> self_intersections(const BSplineCurve3& curve, double tolerance);
+/// The same for a space NURBS curve. \throws InvalidInput if tolerance is not finite and positive.
+CurveIntersections<3> self_intersections(const NurbsCurve3& curve, double tolerance);
+
 /// The hits of a B-spline curve on a patch set. \throws NumericalError as intersect_curve_surface.
 CurveSurfaceHits intersect_curve_surface(const BSplineCurve3& curve, const PatchSet& set);
 /// The hits of a NURBS curve on a patch set. \throws NumericalError as intersect_curve_surface.

@@ -56,6 +56,12 @@ TEST(SplineIntersection, BowTieCrossesItselfOnceAtItsCentre) {
   EXPECT_LT(result.points[0].point.norm(), 1e-14);
   EXPECT_NEAR(result.points[0].s - result.points[0].t, 0.5, 1e-12);
   EXPECT_FALSE(result.points[0].tangential);
+  // The same polygon in the plane y = 3z / 4 in space, within a tolerance of 1e-9.
+  std::vector<Vec3> lifted;
+  for (const Vec2& q : {Vec2(-2, -1), Vec2(-2, 1), Vec2(2, -1), Vec2(2, 1)}) lifted.emplace_back(q.x(), 0.75 * q.y(), q.y());
+  const auto space = self_intersections(periodic_curve(3, lifted), 1e-9);
+  ASSERT_EQ(space.points.size(), 1u);
+  EXPECT_LT(space.points[0].point.norm(), 1e-14);
 }
 
 TEST(SplineIntersection, NurbsCircleThroughTheSphereEquatorHitsTwice) {
