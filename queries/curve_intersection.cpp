@@ -77,6 +77,7 @@ class Search {
     evaluation_error_ = 8.0 * (A.degree() + B.degree() + 2) * 0x1p-53 * scale * (w_max / w_min);
     match_ = tolerance_ + 16.0 * eps_;
     leaf_flatness_ = std::max(eps_, tolerance_ / 8.0);
+    leaf_size_ = std::max(std::ldexp(size_, -16), tolerance_);
   }
 
   CurveIntersections<Dim> run() {
@@ -115,8 +116,8 @@ class Search {
     if (find_overlap(p, q)) return true;
     // A leaf: both pieces flat (or split to the end), and in 2D, where Krawczyk's test decides
     // transversal crossings, also nearly parallel: a contact the test cannot decide.
-    const bool p_done = p.flatness <= leaf_flatness_ || tiny(p, A_);
-    const bool q_done = q.flatness <= leaf_flatness_ || tiny(q, B_);
+    const bool p_done = (p.flatness <= leaf_flatness_ && p.box.diagonal().norm() <= leaf_size_) || tiny(p, A_);
+    const bool q_done = (q.flatness <= leaf_flatness_ && q.box.diagonal().norm() <= leaf_size_) || tiny(q, B_);
     if (p_done && q_done && (Dim == 3 || tiny(p, A_) || tiny(q, B_) || nearly_parallel(p, q))) {
       leaves_.push_back({box, p.t0 + alpha * (p.t1 - p.t0), q.t0 + beta * (q.t1 - q.t0)});
       return true;
@@ -252,10 +253,12 @@ class Search {
     return false;
   }
 
-  // Overlaps are looked for on pieces of at least 1/1024 of the size, or whole curves: shorter
-  // coincidences within rounding are tangential contacts.
+  // Overlaps are looked for on pieces at least max(size / 1024, 64 tolerance) long, or whole
+  // curves at least 64 tolerance long: shorter coincidences are contacts.
   bool long_enough(const CurvePiece<Dim>& piece, const RationalBezierCurve<Dim>& curve) const {
-    return (piece.t0 == curve.a() && piece.t1 == curve.b()) || (piece.P.back() - piece.P.front()).norm() >= size_ / 1024.0;
+    const double length = (piece.P.back() - piece.P.front()).norm();
+    if (!(length >= 64.0 * tolerance_)) return false;
+    return (piece.t0 == curve.a() && piece.t1 == curve.b()) || length >= size_ / 1024.0;
   }
 
   // Pieces split 44 times are not split further.
@@ -387,6 +390,7 @@ class Search {
   double evaluation_error_ = 0.0;
   double match_ = 0.0;
   double leaf_flatness_ = 0.0;
+  double leaf_size_ = 0.0;
   std::vector<CurveIntersection<Dim>> points_;
   std::vector<Box2> unique_boxes_;
   std::vector<CurveOverlap> overlaps_;
@@ -394,6 +398,26 @@ class Search {
 };
 
 }  // namespace
+
+template <int Dim>
+void add_or_merge(std::vector<CurveIntersection<Dim>>& points, const CurveIntersection<Dim>& x, double t_slack,
+                  double s_slack) {
+  for (CurveIntersection<Dim>& y : points) {
+    if (!(std::abs(x.t - y.t) <= x.t_bound + y.t_bound + t_slack && std::abs(x.s - y.s) <= x.s_bound + y.s_bound + s_slack)) continue;
+    const double t_lo = std::min(x.t - x.t_bound, y.t - y.t_bound), t_hi = std::max(x.t + x.t_bound, y.t + y.t_bound);
+    const double s_lo = std::min(x.s - x.s_bound, y.s - y.s_bound), s_hi = std::max(x.s + x.s_bound, y.s + y.s_bound);
+    // In 2D a point that is not tangential is certified; in 3D the closer point is the contact's.
+    const bool take_x = Dim == 2 && x.tangential != y.tangential ? !x.tangential : x.distance < y.distance;
+    if (take_x) y = x;
+    y.t_bound = std::max(y.t - t_lo, t_hi - y.t);
+    y.s_bound = std::max(y.s - s_lo, s_hi - y.s);
+    return;
+  }
+  points.push_back(x);
+}
+
+template void add_or_merge(std::vector<CurveIntersection<2>>&, const CurveIntersection<2>&, double, double);
+template void add_or_merge(std::vector<CurveIntersection<3>>&, const CurveIntersection<3>&, double, double);
 
 template <int Dim>
 CurveIntersections<Dim> intersect_rational(const RationalBezierCurve<Dim>& first, const RationalBezierCurve<Dim>& second,

@@ -24,8 +24,9 @@
 //
 // Tangential and other singular contacts (2D), and every contact in 3D. Where no test decides,
 // pairs are split until both pieces are flat within eps (3D: max(eps, tolerance / 8): the control
-// points within that of the chord) and, in 2D, their chords are parallel within a sine of 1e-4
-// (or a piece has been halved 44 times); such pairs are leaves. Leaves whose parameter boxes touch
+// points within that of the chord) and no larger than max(2^-16 size, tolerance) (size: the
+// diagonal of both curves' box) and, in 2D, their chords are parallel within a sine of 1e-4 (or a piece has been
+// halved 44 times); such pairs are leaves. Leaves whose parameter boxes touch
 // form one contact; it is reported once, at the (t, s) in its boxes where |A(t) - B(s)| is
 // smallest (Gauss-Newton from the best leaf; where that stalls, as it can at a tangency where
 // [A', -B'] has rank 1, golden-section search on t of min_s |A(t) - B(s)|), if that distance is
@@ -38,7 +39,8 @@
 // A'(t) and B'(s) is at most sqrt(tolerance / size), size = the diagonal of the pair's box,
 // the angle below which the contact's length is set by the curvature, not by the angle.
 //
-// Overlaps. Where a piece of one curve lies on the other (its end points project onto the other
+// Overlaps. Where a piece of one curve (at least max(size / 1024, 64 tolerance) long, or the whole
+// curve if at least 64 tolerance long) lies on the other (its end points project onto the other
 // curve within tolerance + 16 eps, and its control points agree within that with those of the
 // other curve's piece between the projections, both in standard form w_0 = w_n = 1 and the lower
 // degree elevated), the pair is one overlap, not points. Overlaps found on neighbouring pieces
@@ -117,6 +119,13 @@ template <int Dim>
 RationalBezierCurve<Dim> as_rational(const BezierCurve<Dim>& curve);
 
 namespace detail {
+
+/// Adds x to `points`, or, where an answer's box [t -+ t_bound] x [s -+ s_bound] meets x's (within
+/// the slacks), merges the two into one: in 2D the certified one (else the closer one), in 3D the
+/// closer one, with bounds covering both boxes. For answers of neighbouring pieces.
+template <int Dim>
+void add_or_merge(std::vector<CurveIntersection<Dim>>& points, const CurveIntersection<Dim>& x, double t_slack,
+                  double s_slack);
 
 /// The search of the file comment on rational curves (tolerance 0 in 2D).
 template <int Dim>

@@ -419,10 +419,18 @@ CurveSurfaceHits intersect_pieces_with_set(const std::vector<RationalBezierCurve
   std::stable_sort(all.begin(), all.end(), [](const CurveSurfaceHit& x, const CurveSurfaceHit& y) { return x.patch < y.patch; });
   const double slack = domain_slack * (pieces.back().b() - pieces.front().a());
   for (const CurveSurfaceHit& hit : all) {
-    const bool seen = std::any_of(result.hits.begin(), result.hits.end(), [&](const CurveSurfaceHit& kept) {
-      return std::abs(kept.t - hit.t) <= kept.t_bound + hit.t_bound + slack;
+    const auto kept = std::find_if(result.hits.begin(), result.hits.end(), [&](const CurveSurfaceHit& y) {
+      return std::abs(y.t - hit.t) <= y.t_bound + hit.t_bound + slack;
     });
-    if (!seen) result.hits.push_back(hit);
+    if (kept == result.hits.end()) {
+      result.hits.push_back(hit);
+      continue;
+    }
+    // One point of the curve: keep the certified (else the closer) hit, its t bound covering both.
+    const double t_lo = std::min(kept->t - kept->t_bound, hit.t - hit.t_bound);
+    const double t_hi = std::max(kept->t + kept->t_bound, hit.t + hit.t_bound);
+    if (kept->tangential != hit.tangential ? !hit.tangential : hit.distance < kept->distance) *kept = hit;
+    kept->t_bound = std::max(kept->t - t_lo, t_hi - kept->t);
   }
   sort_by_t(result.hits);
   return result;

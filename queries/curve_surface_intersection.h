@@ -34,8 +34,9 @@
 // A hit within its bound (plus 1e-13) of the edge of [a, b] or of [0, 1]^2 is kept, its
 // parameters clamped. In a patch set every patch is searched, and hits of different patches whose
 // t intervals [t - t_bound, t + t_bound] meet are one hit (one point of the curve): a hit on an
-// edge shared by two patches, or at a corner shared by four, is reported once, with the patch of
-// the lowest index.
+// edge shared by two patches, or at a corner shared by four, is reported once, by the certified
+// hit (else the closest; among equals the patch of the lowest index), with t_bound widened to
+// cover both t intervals (u, v and their bounds are that patch's).
 
 #include <cstdint>
 #include <vector>

@@ -34,6 +34,7 @@ bool monotone(const std::vector<Point<Dim + 1>>& H) {
   for (const auto& direction : N) {
     if (direction.norm() > 0.0) v += direction.normalized();
   }
+  if (std::all_of(N.begin(), N.end(), [](const Point<Dim>& direction) { return direction.norm() == 0.0; })) return true;  // a point
   if (!(v.norm() > 0.0)) return false;
   v.normalize();
   for (const auto& direction : N) {
@@ -84,10 +85,7 @@ CurveIntersections<Dim> self_intersections_of_pieces(const std::vector<RationalB
       for (const CurveIntersection<Dim>& x : pair.points) {
         if (x.s - x.t <= x.t_bound + x.s_bound + 4.0 * shortest) continue;  // the pieces' shared end
         if (closed && x.t - a <= x.t_bound + 4.0 * shortest && b - x.s <= x.s_bound + 4.0 * shortest) continue;
-        const bool seen = std::any_of(result.points.begin(), result.points.end(), [&](const CurveIntersection<Dim>& y) {
-          return std::abs(x.t - y.t) <= x.t_bound + y.t_bound + shortest && std::abs(x.s - y.s) <= x.s_bound + y.s_bound + shortest;
-        });
-        if (!seen) result.points.push_back(x);
+        detail::add_or_merge(result.points, x, shortest, shortest);
       }
       result.overlaps.insert(result.overlaps.end(), pair.overlaps.begin(), pair.overlaps.end());
     }

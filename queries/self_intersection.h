@@ -5,7 +5,8 @@
 // Method. [a, b] is split in halves until every piece is monotone in some direction v: the
 // hodograph's numerator N(t) = H'_xyz(t) w(t) - H_xyz(t) w'(t) (C' = N / w^2, Bernstein
 // coefficients N_i by products, for a polynomial curve just H') has v . N_i >= 10^-3 |N_i| for
-// every i with N_i != 0, v the normalised sum of the unit N_i. Then v . C increases on the piece,
+// every i with N_i != 0, v the normalised sum of the unit N_i (a piece whose N_i all vanish is a
+// point, and is kept whole). Then v . C increases on the piece,
 // so the piece cannot meet itself. Pieces halved 40 times without passing the test (a cusp,
 // where C' = 0 and the direction turns round) are kept as they are.
 // Every pair of pieces i < j is intersected (intersect_curves on the pieces, which keep the

@@ -35,10 +35,7 @@ CurveIntersections<Dim> intersect_pieces(const std::vector<RationalBezierCurve<D
       CurveIntersections<Dim> pair = detail::intersect_rational(a, b, tolerance);
       result.eps = std::max(result.eps, pair.eps);
       for (const CurveIntersection<Dim>& x : pair.points) {
-        const bool seen = std::any_of(result.points.begin(), result.points.end(), [&](const CurveIntersection<Dim>& y) {
-          return std::abs(x.t - y.t) <= x.t_bound + y.t_bound + t_slack && std::abs(x.s - y.s) <= x.s_bound + y.s_bound + s_slack;
-        });
-        if (!seen) result.points.push_back(x);
+        detail::add_or_merge(result.points, x, t_slack, s_slack);
       }
       overlaps.insert(overlaps.end(), pair.overlaps.begin(), pair.overlaps.end());
     }

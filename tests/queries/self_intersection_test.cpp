@@ -71,6 +71,7 @@ TEST(SelfIntersection, SpaceLoopWithinTheTolerance) {
   const BezierCurve3 space({Vec3(0, 0, 0), Vec3(1.5, 1, 0), Vec3(-0.5, 1, 0), Vec3(1, 0, h)});
   EXPECT_TRUE(self_intersections(space, 1e-4).points.empty());
   const auto result = self_intersections(space, 1e-2);
+  EXPECT_TRUE(result.overlaps.empty());  // pieces near the crossing lie within 1e-2, but are short
   ASSERT_EQ(result.points.size(), 1u);
   const double t = (7 - std::sqrt(21.0)) / 14, s = (7 + std::sqrt(21.0)) / 14;
   EXPECT_NEAR(result.points[0].distance, h * (s * s * s - t * t * t), 1e-6);
