@@ -189,6 +189,30 @@ TEST(CurveIntersection, CircleArcAgainstItsSubArcIsOneOverlap) {
   EXPECT_NEAR(result.overlaps[0].s1, 1.0, 1e-9);
 }
 
+TEST(CurveIntersection, DegenerateCurvesGiveContactsWithTightBounds) {
+  const BezierCurve2 line({Vec2(0, 0), Vec2(1, 1)});
+  // A point curve on the line: no certificate (its derivative vanishes), one contact at s = 1/2.
+  const auto point = intersect_curves(BezierCurve2({Vec2(0.5, 0.5)}), line);
+  ASSERT_EQ(point.points.size(), 1u);
+  EXPECT_TRUE(point.points[0].tangential);
+  EXPECT_LE(std::abs(point.points[0].s - 0.5), point.points[0].s_bound);
+  EXPECT_LT(point.points[0].s_bound, 1e-4);
+  EXPECT_TRUE(intersect_curves(BezierCurve2({Vec2(0.5, 0.6)}), line).points.empty());
+  // Collinear segments end to end touch at one point (not an overlap).
+  const auto collinear = intersect_curves(line, BezierCurve2({Vec2(1, 1), Vec2(2, 2)}));
+  EXPECT_TRUE(collinear.overlaps.empty());
+  ASSERT_EQ(collinear.points.size(), 1u);
+  EXPECT_LE(1.0 - collinear.points[0].t, collinear.points[0].t_bound);
+  EXPECT_LE(collinear.points[0].s, collinear.points[0].s_bound);
+  EXPECT_LT(collinear.points[0].t_bound, 1e-4);
+  // Segments sharing an end at an angle: a certified point at their ends.
+  const auto corner = intersect_curves(line, BezierCurve2({Vec2(1, 1), Vec2(2, 0)}));
+  ASSERT_EQ(corner.points.size(), 1u);
+  EXPECT_FALSE(corner.points[0].tangential);
+  EXPECT_EQ(corner.points[0].t, 1.0);
+  EXPECT_EQ(corner.points[0].s, 0.0);
+}
+
 TEST(CurveIntersection, SpaceCurvesWithinTheTolerance) {
   // Two space lines 1e-7 apart at their closest points: within 1e-6 they meet, within 1e-8 not.
   const BezierCurve3 first({Vec3(-1, 0, 0), Vec3(1, 0, 0)});

@@ -45,6 +45,13 @@ TEST(SelfIntersection, CuspIsNotACrossing) {
   EXPECT_NEAR(looped.points[0].point.x(), 0.5, 1e-12);
 }
 
+TEST(SelfIntersection, PointCurveIsOnePiece) {
+  // Every hodograph coefficient vanishes: one piece, nothing to report (it was split 2^40 ways).
+  const auto result = self_intersections(BezierCurve2({Vec2(1, 1), Vec2(1, 1), Vec2(1, 1)}));
+  EXPECT_TRUE(result.points.empty());
+  EXPECT_TRUE(result.overlaps.empty());
+}
+
 TEST(SelfIntersection, RationalLoopKeepsItsSymmetry) {
   const RationalBezierCurve2 rational({Vec2(0, 0), Vec2(1.5, 1), Vec2(-0.5, 1), Vec2(1, 0)}, {1, 3, 3, 1});
   const auto result = self_intersections(rational);
