@@ -349,7 +349,10 @@ void report_side(const PatchSection& patch, const Cell& cell, int side, SectionS
   const double second = along_u ? M.uu : M.vv;
   double steps = std::max(1.0, std::ceil(std::sqrt(second / (8.0 * state.tolerance))));
   if (second / (8.0 * steps * steps) > state.tolerance) steps += 1.0;  // rounding
-  const auto uv_at = [&](double t) { return along_u ? Vec2(t, at) : Vec2(at, t); };
+  // Copies: clang 14 does not let a lambda capture structured bindings.
+  const bool side_along_u = along_u;
+  const double side_at = at;
+  const auto uv_at = [&](double t) { return side_along_u ? Vec2(t, side_at) : Vec2(side_at, t); };
   SectionPiece piece{add_node(state, patch, uv_at(from)), add_node(state, patch, uv_at(to)), {},
                      second / (8.0 * steps * steps)};
   for (int k = 1; k < static_cast<int>(steps); ++k) {
