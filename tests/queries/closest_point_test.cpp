@@ -19,21 +19,16 @@
 #include "surfaces/nurbs_surface.h"
 #include "surfaces/surface_normal.h"
 #include "surfaces/tessellator.h"
+#include "tests/queries/query_fixtures.h"
 
 namespace closest_point_test {
 namespace {
 
 using namespace patchwork;
 
-PatchSet set_of(const NurbsSurface& surface) {
-  const NurbsBezierPatches pieces = bezier_patches(surface);
-  return PatchSet(pieces.patches, pieces.joins);
-}
+const auto& set_of = patchwork::testing::nurbs_patch_set;
 
-const PatchSet& teapot() {
-  static const PatchSet set(read_bpt(std::string(PATCHWORK_DATA_DIR) + "/teapot.bpt"));
-  return set;
-}
+const auto& teapot = patchwork::testing::teapot_set;
 
 // The certified interval holds the true distance, and is as narrow as asked (or the search says
 // how many pieces it took).

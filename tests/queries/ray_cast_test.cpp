@@ -16,16 +16,14 @@
 #include "surfaces/nurbs_shapes.h"
 #include "surfaces/nurbs_surface.h"
 #include "surfaces/tessellator.h"
+#include "tests/queries/query_fixtures.h"
 
 namespace ray_cast_test {
 namespace {
 
 using namespace patchwork;
 
-PatchSet set_from(const NurbsSurface& surface) {
-  const NurbsBezierPatches pieces = bezier_patches(surface);
-  return PatchSet(pieces.patches, pieces.joins);
-}
+const auto& set_from = patchwork::testing::nurbs_patch_set;
 
 const PatchSet& sphere() {
   static const PatchSet set = set_from(nurbs_sphere(Vec3(0.25, -0.5, 1.0), 1.5));
@@ -37,10 +35,7 @@ const PatchSet& torus() {
   return set;
 }
 
-const PatchSet& teapot() {
-  static const PatchSet set(read_bpt(std::string(PATCHWORK_DATA_DIR) + "/teapot.bpt"));
-  return set;
-}
+const auto& teapot = patchwork::testing::teapot_set;
 
 // Every hit on the ray and on the surface, in increasing t.
 void expect_consistent(const RayHits& result, const Vec3& o, const Vec3& d, double size) {
