@@ -77,3 +77,37 @@ if(PATCHWORK_BUILD_BENCH)
     patchwork_missing("Google Benchmark" libbenchmark-dev)
   endif()
 endif()
+
+# The Python module (python/): Debian's pybind11 for Debian's python3 (/usr/bin/python3, where
+# python3-numpy and pybind11 live; this machine image puts another Python first on PATH, so the
+# interpreter is named, not searched). Optional: without pybind11 the rest builds as before and
+# the configure log says why the module is left out. The sanitizer build leaves it out too: an
+# instrumented extension needs the sanitizer runtime preloaded into the interpreter, which would
+# test the interpreter's leaks rather than ours.
+option(PATCHWORK_BUILD_PYTHON "Build the Python module when pybind11 and Debian's python3 are present" ON)
+set(PATCHWORK_PYTHON "/usr/bin/python3" CACHE FILEPATH "The Python the module is built for and tested with")
+set(PATCHWORK_PYTHON_MODULE OFF)
+if(NOT PATCHWORK_BUILD_PYTHON)
+  message(STATUS "patchwork: Python module off (PATCHWORK_BUILD_PYTHON=OFF)")
+elseif(PATCHWORK_SANITIZE)
+  message(STATUS "patchwork: Python module and its tests skipped in the sanitizer build (an instrumented "
+                 "extension needs the sanitizer runtime preloaded into python3; the Release build tests it)")
+elseif(NOT EXISTS "${PATCHWORK_PYTHON}")
+  message(STATUS "patchwork: Python module skipped: ${PATCHWORK_PYTHON} not found (Debian package python3-dev)")
+else()
+  set(Python_EXECUTABLE "${PATCHWORK_PYTHON}")
+  set(PYBIND11_FINDPYTHON ON)
+  find_package(Python 3 QUIET COMPONENTS Interpreter Development.Module)
+  find_package(pybind11 CONFIG QUIET)
+  execute_process(COMMAND "${PATCHWORK_PYTHON}" -c "import numpy" RESULT_VARIABLE patchwork_numpy_missing
+                  OUTPUT_QUIET ERROR_QUIET)
+  if(NOT Python_FOUND OR NOT pybind11_FOUND)
+    message(STATUS "patchwork: Python module skipped: pybind11 or the headers of ${PATCHWORK_PYTHON} not found "
+                   "(Debian packages pybind11-dev python3-dev; scripts/setup installs them)")
+  elseif(patchwork_numpy_missing)
+    message(STATUS "patchwork: Python module skipped: ${PATCHWORK_PYTHON} has no numpy (Debian package python3-numpy)")
+  else()
+    set(PATCHWORK_PYTHON_MODULE ON)
+    message(STATUS "patchwork: Python module for ${PATCHWORK_PYTHON} (Python ${Python_VERSION}, pybind11 ${pybind11_VERSION})")
+  endif()
+endif()

@@ -70,6 +70,12 @@ function(patchwork_add_library name)
   add_library(patchwork_${name} STATIC ${ARG_SOURCES})
   add_library(patchwork::${name} ALIAS patchwork_${name})
   set_target_properties(patchwork_${name} PROPERTIES UNITY_BUILD ${PATCHWORK_UNITY_BUILD})
+  # The Python module links the static libraries into a shared extension: they are compiled as
+  # position-independent code then (only they: the programs and the tests' precompiled header
+  # keep their flags).
+  if(PATCHWORK_PYTHON_MODULE)
+    set_target_properties(patchwork_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  endif()
   target_include_directories(patchwork_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>)
   # The helper targets hold this build's own flags and stay out of the installed package (a
   # static library's private links are exported too); cmake/PatchworkInstall.cmake gives the

@@ -17,9 +17,7 @@ enum class MeshFormat { obj, off, ply };
 
 // The format named by the extension of `path`. \throws IoError for any other extension.
 MeshFormat mesh_format_of(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lower_extension(path);
   if (extension == ".obj") return MeshFormat::obj;
   if (extension == ".off") return MeshFormat::off;
   if (extension == ".ply") return MeshFormat::ply;
@@ -37,6 +35,13 @@ std::string_view without_plus(std::string_view token) {
 }
 
 }  // namespace
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
 
 FaceVertexMesh read_mesh(const std::filesystem::path& path) {
   switch (mesh_format_of(path)) {

@@ -26,6 +26,9 @@
 
 namespace patchwork {
 
+/// The extension of `path` in lower case, with its dot (".glb"; empty if it has none).
+std::string lower_extension(const std::filesystem::path& path);
+
 /// Reads a .obj, .off or .ply file by its extension.
 /// \throws IoError for another extension or an unreadable file, ParseError if it is malformed.
 FaceVertexMesh read_mesh(const std::filesystem::path& path);

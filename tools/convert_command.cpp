@@ -46,7 +46,7 @@ void run_convert(const std::string& input, const std::string& output) {
   // The output's extension is checked before anything is read.
   check_mesh_output("convert", output);
   refuse_patch_file_as_mesh("convert to a mesh format", input);
-  const FaceVertexMesh mesh = is_gltf(input) ? welded_faces(read_gltf(input)) : read_mesh(input);
+  const FaceVertexMesh mesh = read_polygon_mesh(input);
   // What the mesh cannot be written as (a face that is not simple) is the input's fault: the
   // CLI names the input file before every library error (tools/patchwork.cpp).
   write_polygon_mesh(output, mesh);

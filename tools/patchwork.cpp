@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
     if (demo->parsed()) patchwork::tools::run_curve_demo(std::cout, degree, evaluations);
     if (patches->parsed()) patchwork::tools::run_patches_report(std::cout, patch_file, json);
     if (info->parsed()) {
-      if (patchwork::tools::is_patch_file(info_file)) {
+      if (patchwork::is_patch_file(info_file)) {
         patchwork::tools::run_patches_report(std::cout, info_file, info_json);
       } else {
         patchwork::tools::run_info(std::cout, info_file, info_json);

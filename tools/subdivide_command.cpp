@@ -73,7 +73,7 @@ void run_subdivide(std::ostream& out, std::ostream& notes, const SubdivideArgume
     throw InvalidInput("subdivide: --tolerance, --relative-tolerance and --segments need --limit");
   }
   refuse_patch_file_as_mesh("subdivide", arguments.input);
-  cage.mesh = is_gltf(arguments.input) ? welded_faces(read_gltf(arguments.input)) : read_mesh(arguments.input);
+  cage.mesh = read_polygon_mesh(arguments.input);
   // Faces wound the wrong way are flipped (the fewest, per component) and the user is told.
   const CageOrientation oriented = orient_cage(cage);
   cage = oriented.cage;
