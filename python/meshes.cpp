@@ -2,6 +2,7 @@
 // in Python.
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <string>
 #include <utility>
