@@ -42,11 +42,11 @@ echo "== the installed modules, as docs/guide.md lists them"
 
 echo "== the installed files"
 # Every header of every module with a library (module_graph.txt lists the modules; tools is the
-# CLI, report the speed-vs-error report program), except the internal headers that
+# CLI, report the speed-vs-error report program, python the Python module), except the internal headers that
 # cmake/PatchworkInstall.cmake lists (patchwork_internal_headers); no header that includes what
 # is not installed.
 while IFS=: read -r module _; do
-  case "$module" in "#"* | tools | report) continue ;; esac
+  case "$module" in "#"* | tools | report | python) continue ;; esac
   for header in "$source_dir/$module"/*.h; do
     name="$module/${header##*/}"
     case "$name" in
@@ -74,6 +74,20 @@ config_file="$(find "$prefix" -name patchworkConfig.cmake)"
 [ -n "$pc_file" ] && [ -n "$config_file" ] || fail "patchwork.pc or patchworkConfig.cmake not installed"
 echo "$headers headers, $(find "$prefix" -name 'libpatchwork_*.a' | wc -l) libraries, bin/patchwork," \
   "${config_file#"$prefix/"}, ${pc_file#"$prefix/"}"
+
+# The Python module, where this build has it (docs/python.md): the package in the prefix, imported
+# by the Python it was built for with the PYTHONPATH the docs give, tessellating the teapot.
+python=$(sed -n 's/^PATCHWORK_PYTHON:FILEPATH=//p' "$build_dir/CMakeCache.txt")
+if [ -f "$build_dir/python/patchwork/__init__.py" ]; then
+  package="$(find "$prefix" -type d -path '*/dist-packages/patchwork')"
+  [ -n "$package" ] && [ -f "$package/_patchwork.pyi" ] && [ -f "$package/py.typed" ] ||
+    fail "the Python package is not installed with its stubs"
+  PYTHONPATH="$(dirname "$package")" "$python" -c 'import sys, patchwork as pw
+assert pw.__file__.startswith(sys.argv[2]), pw.__file__
+t = pw.tessellate(pw.read_bpt(sys.argv[1]), relative_tolerance=1e-3)
+print("python module:", pw.__version__, t.triangle_count, "triangles of the teapot")' "$source_dir/data/teapot.bpt" "$package" ||
+    fail "the installed Python module does not import from the prefix"
+fi
 
 echo "== find_package(patchwork 0.2) must fail: before 1.0 a minor version may break the API"
 mkdir "$work/too_new"

@@ -2,7 +2,7 @@
 """Speed against error for the teapot, as a picture: patchwork's tessellation time and triangle
 count against the measured error, for tolerances from 1e-1 to 1e-5 of the box diagonal.
 
-    PYTHONPATH=build/release/python /usr/bin/python3 examples/plot_speed_vs_error.py data/teapot.bpt speed.png
+    PYTHONPATH=build/release/python /usr/bin/python3 python/examples/plot_speed_vs_error.py data/teapot.bpt speed.png
 
 Each time is the best of five runs of one tessellation (one thread, no measuring); the measured
 error comes from a separate run with measuring on.
