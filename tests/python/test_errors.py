@@ -65,3 +65,11 @@ def test_topology_error_for_a_non_manifold_cage() -> None:
 def test_wrong_types_are_type_errors() -> None:
     with pytest.raises(TypeError):
         pw.tessellate("teapot.bpt", tolerance=0.1)  # type: ignore[call-overload]
+
+
+def test_numerical_error_for_a_patch_without_a_normal() -> None:
+    point = pw.BezierPatch(np.ones((2, 2, 3)))  # every control point the same: no tangent plane
+    with pytest.raises(pw.NumericalError, match=r"unit_normal: the patch is degenerate around \(0.5, 0.5\)"):
+        point.normal(0.5, 0.5)
+    with pytest.raises(ArithmeticError):
+        point.normal(0.25, 0.5)
