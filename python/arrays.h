@@ -29,8 +29,8 @@ namespace py = pybind11;
 
 /// float64 in C order, converted once from whatever the caller passed.
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
-/// uint32 in C order, converted once.
-using IndexArray = py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>;
+/// uint32 in C order.
+using IndexArray = py::array_t<std::uint32_t, py::array::c_style>;
 
 /// "(n, 3)" and the like, for messages.
 inline std::string shape_text(const py::array& array) {
@@ -80,21 +80,51 @@ Point<Dim> point_from(const DoubleArray& array, const char* name) {
   return Eigen::Map<const Point<Dim>>(array.data());
 }
 
+/// Indices from any integer array or sequence (not floats, which would be truncated), each in
+/// [0, 2^32): converted once to C-ordered uint32.
+/// \throws InvalidInput naming `name` for another dtype or a value out of range (never wrapped).
+inline IndexArray indices_from(const py::handle& object, const char* name) {
+  const py::array array = py::module_::import("numpy").attr("asarray")(object);
+  const char kind = array.dtype().kind();
+  if (array.size() > 0 && kind != 'i' && kind != 'u') {
+    throw InvalidInput(detail::message(name, ": expected integer indices, got an array of dtype ",
+                                       py::str(array.dtype()).cast<std::string>()));
+  }
+  if (array.size() > 0) {
+    // Compared as Python integers: exact for every integer dtype.
+    const py::int_ low = array.attr("min")();
+    const py::int_ high = array.attr("max")();
+    if (low < py::int_(0) || high > py::int_(0xffffffffu)) {
+      const py::int_ bad = low < py::int_(0) ? low : high;
+      throw InvalidInput(detail::message(name, ": index ", std::string(py::str(py::handle(bad))), " is not in [0, 2^32)"));
+    }
+  }
+  return IndexArray(array.attr("astype")("uint32", py::arg("order") = "C"));
+}
+
+/// Marks `array` read-only (a view of data whose invariants C++ checked once, on construction).
+template <class Array>
+Array read_only(Array array) {
+  py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return array;
+}
+
 /// A view of `rows` rows of `Cols` values of type T at `data` (row stride `row_bytes`), kept
 /// alive by `owner` (the array's base). An empty view owns an empty array of that shape.
 template <class T, py::ssize_t Cols>
 py::array_t<T> view(const T* data, std::size_t rows, py::ssize_t row_bytes, py::handle owner) {
+  // An empty view still has `owner` as its base; numpy needs some address for it.
+  static const T nothing{};
   const py::ssize_t n = static_cast<py::ssize_t>(rows);
-  if (n == 0) return py::array_t<T>(std::vector<py::ssize_t>{0, Cols});
-  return py::array_t<T>({n, Cols}, {row_bytes, static_cast<py::ssize_t>(sizeof(T))}, data, owner);
+  return py::array_t<T>({n, Cols}, {row_bytes, static_cast<py::ssize_t>(sizeof(T))}, n == 0 ? &nothing : data, owner);
 }
 
 /// A 1-D view of `count` values at `data`, kept alive by `owner`.
 template <class T>
 py::array_t<T> view(const std::vector<T>& values, py::handle owner) {
-  if (values.empty()) return py::array_t<T>(std::vector<py::ssize_t>{0});
+  static const T nothing{};
   return py::array_t<T>({static_cast<py::ssize_t>(values.size())}, {static_cast<py::ssize_t>(sizeof(T))},
-                        values.data(), owner);
+                        values.empty() ? &nothing : values.data(), owner);
 }
 
 /// A view of fixed-size Eigen vectors (Vec2, Vec3, Vec4, Point<Dim>) as an (n, size) array.

@@ -3,7 +3,7 @@
 //     InvalidInput(Error, ValueError)       <- C++ InvalidInput
 //       TopologyError(InvalidInput)         <- C++ TopologyError
 //     ParseError(Error, ValueError)         <- C++ ParseError; .path, .line, .column
-//     IoError(Error, OSError)               <- C++ IoError; .path
+//     IoError(Error, OSError)               <- C++ IoError; .path and .filename
 //     NumericalError(Error, ArithmeticError) <- C++ NumericalError
 // The message is the C++ one, unchanged: the one line the CLI prints, naming the file.
 
@@ -30,9 +30,9 @@ struct ErrorClasses {
 ErrorClasses error_classes;
 
 // A new exception class patchwork.<name> with the given bases, added to the module.
-PyObject* new_class(py::module_& m, const char* name, const char* doc, py::tuple bases) {
+PyObject* new_class(py::module_& m, const char* name, const char* doc, py::tuple bases, py::dict members = py::dict()) {
   const std::string qualified = std::string("patchwork.") + name;
-  PyObject* type = PyErr_NewExceptionWithDoc(qualified.c_str(), doc, bases.ptr(), nullptr);
+  PyObject* type = PyErr_NewExceptionWithDoc(qualified.c_str(), doc, bases.ptr(), members.ptr());
   if (type == nullptr) throw py::error_already_set();
   m.add_object(name, py::handle(type));
   return type;
@@ -57,8 +57,12 @@ void bind_errors(py::module_& m) {
                                py::make_tuple(py::handle(c.invalid_input)));
   c.parse_error = new_class(m, "ParseError", "A file's content could not be parsed (path, line, column; 1-based).",
                             py::make_tuple(py::handle(c.error), value_error));
-  c.io_error = new_class(m, "IoError", "Reading or writing a file failed (path).",
-                         py::make_tuple(py::handle(c.error), py::handle(PyExc_OSError)));
+  // OSError's str() would read "[Errno None] None: 'path'" once filename is set: IoError keeps
+  // the message as it is, and still sets filename for code written for OSError.
+  py::dict io_members;
+  io_members["__str__"] = py::module_::import("builtins").attr("BaseException").attr("__str__");
+  c.io_error = new_class(m, "IoError", "Reading or writing a file failed (path, and OSError's filename).",
+                         py::make_tuple(py::handle(c.error), py::handle(PyExc_OSError)), io_members);
   c.numerical_error = new_class(m, "NumericalError", "A computation cannot deliver its contract.",
                                 py::make_tuple(py::handle(c.error), py::handle(PyExc_ArithmeticError)));
 
@@ -75,7 +79,7 @@ void bind_errors(py::module_& m) {
       raise(k.parse_error, e.what(),
             py::dict(py::arg("path") = e.path(), py::arg("line") = e.line(), py::arg("column") = e.column()));
     } catch (const IoError& e) {
-      raise(k.io_error, e.what(), py::dict(py::arg("path") = e.path()));
+      raise(k.io_error, e.what(), py::dict(py::arg("path") = e.path(), py::arg("filename") = e.path()));
     } catch (const NumericalError& e) {
       raise(k.numerical_error, e.what(), py::dict());
     }

@@ -27,17 +27,22 @@ FaceVertexMesh mesh_from(const DoubleArray& positions, const py::object& faces) 
   Positions p(positions.shape(0), 3);
   std::copy_n(positions.data(), positions.size(), p.data());
   if (py::isinstance<py::array>(faces)) {
-    const IndexArray uniform = faces.cast<IndexArray>();
+    const IndexArray uniform = indices_from(faces, "faces");
     require_shape(uniform, "faces", {-1, -1}, "(m, k) or a list of index lists");
     return FaceVertexMesh::uniform(std::move(p), static_cast<std::uint32_t>(uniform.shape(1)),
                                    {uniform.data(), uniform.data() + uniform.size()});
   }
+  if (!py::isinstance<py::sequence>(faces) || py::isinstance<py::str>(faces)) {
+    throw InvalidInput("faces: expected an (m, k) integer array or a list of index lists");
+  }
   std::vector<std::uint32_t> sizes;
   std::vector<std::uint32_t> indices;
   for (const py::handle face : faces) {
-    const auto corners = face.cast<std::vector<std::uint32_t>>();
+    const std::string name = detail::message("faces[", sizes.size(), "]");
+    const IndexArray corners = indices_from(face, name.c_str());
+    require_shape(corners, name.c_str(), {-1}, "(k,)");
     sizes.push_back(static_cast<std::uint32_t>(corners.size()));
-    indices.insert(indices.end(), corners.begin(), corners.end());
+    indices.insert(indices.end(), corners.data(), corners.data() + corners.size());
   }
   return FaceVertexMesh(std::move(p), std::move(sizes), std::move(indices));
 }
@@ -80,15 +85,17 @@ void bind_meshes(py::module_& m) {
           "positions",
           [](py::object self) {
             const auto& mesh = self.cast<const FaceVertexMesh&>();
-            return view<double, 3>(mesh.positions().data(), mesh.vertex_count(), 3 * sizeof(double), self);
+            return read_only(view<double, 3>(mesh.positions().data(), mesh.vertex_count(), 3 * sizeof(double), self));
           },
-          "The positions, an (n, 3) view (no copy).")
+          "The positions, a read-only (n, 3) view (no copy).")
       .def_property_readonly(
-          "face_sizes", [](py::object self) { return view(self.cast<const FaceVertexMesh&>().face_sizes(), self); },
-          "The number of corners of every face, an (m,) uint32 view.")
+          "face_sizes",
+          [](py::object self) { return read_only(view(self.cast<const FaceVertexMesh&>().face_sizes(), self)); },
+          "The number of corners of every face, a read-only (m,) uint32 view.")
       .def_property_readonly(
-          "face_indices", [](py::object self) { return view(self.cast<const FaceVertexMesh&>().face_indices(), self); },
-          "Every face's vertex indices, face after face, a uint32 view.")
+          "face_indices",
+          [](py::object self) { return read_only(view(self.cast<const FaceVertexMesh&>().face_indices(), self)); },
+          "Every face's vertex indices, face after face, a read-only uint32 view.")
       .def_property_readonly("vertex_count", &FaceVertexMesh::vertex_count, "The number of vertices.")
       .def_property_readonly("face_count", &FaceVertexMesh::face_count, "The number of faces.")
       .def("__repr__", [](const FaceVertexMesh& mesh) {
@@ -104,7 +111,7 @@ void bind_meshes(py::module_& m) {
   m.def("write_mesh", &write_polygon_mesh, py::arg("path"), py::arg("mesh"), py::call_guard<py::gil_scoped_release>(),
         "Writes a polygon mesh as .obj, .off, .ply (as it is) or .glb/.gltf (triangulated, normals), atomically.");
   m.def(
-      "read_gltf", [](const std::string& path, bool z_up) { return read_gltf(path, z_up); }, py::arg("path"),
+      "read_gltf", [](const std::filesystem::path& path, bool z_up) { return read_gltf(path, z_up); }, py::arg("path"),
       py::arg("z_up") = true, py::call_guard<py::gil_scoped_release>(),
       "The render mesh of a .glb/.gltf file (z_up: convert glTF's +Y up to patchwork's +Z up).");
 
@@ -161,7 +168,8 @@ void bind_meshes(py::module_& m) {
       .def_property_readonly("face_count", &LimitSurface::face_count, "The number of base faces (parameter domains).")
       .def(
           "evaluate",
-          [](const LimitSurface& s, const IndexArray& faces, const DoubleArray& u, const DoubleArray& v) {
+          [](const LimitSurface& s, const py::object& face_objects, const DoubleArray& u, const DoubleArray& v) {
+            const IndexArray faces = indices_from(face_objects, "faces");
             if (shape_of(faces) != shape_of(u) || shape_of(u) != shape_of(v)) {
               throw InvalidInput(detail::message("faces, u, v: expected arrays of one shape, got ", shape_text(faces),
                                                  ", ", shape_text(u), ", ", shape_text(v)));

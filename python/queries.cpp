@@ -125,12 +125,16 @@ CurveCommon intersect_same_kind(const Any& first, const Any& second, const std::
   const double tol = tolerance_for(first.dimension(), tolerance);
   return visit_same_dimension(first, second, [&](const auto& a, const auto& b) {
     constexpr int dim = dimension_of<std::decay_t<decltype(a)>>;
-    py::gil_scoped_release release;
-    if constexpr (dim == 2) {
-      return curve_common(intersect_curves(a, b));
-    } else {
-      return curve_common(intersect_curves(a, b, tol));
-    }
+    // The search without the GIL; its answer becomes Python objects with it.
+    const CurveIntersections<dim> x = [&] {
+      py::gil_scoped_release release;
+      if constexpr (dim == 2) {
+        return intersect_curves(a, b);
+      } else {
+        return intersect_curves(a, b, tol);
+      }
+    }();
+    return curve_common(x);
   });
 }
 
@@ -140,12 +144,15 @@ CurveCommon self_intersect(const Any& curve, const std::optional<double>& tolera
   return std::visit(
       [&](const auto& c) {
         constexpr int dim = dimension_of<std::decay_t<decltype(c)>>;
-        py::gil_scoped_release release;
-        if constexpr (dim == 2) {
-          return curve_common(self_intersections(c));
-        } else {
-          return curve_common(self_intersections(c, tol));
-        }
+        const CurveIntersections<dim> x = [&] {
+          py::gil_scoped_release release;
+          if constexpr (dim == 2) {
+            return self_intersections(c);
+          } else {
+            return self_intersections(c, tol);
+          }
+        }();
+        return curve_common(x);
       },
       curve.curve);
 }
@@ -200,7 +207,8 @@ void bind_queries(py::module_& m) {
   py::class_<CurveFoot>(m, "CurveClosestPoint", "The closest point of a curve, certified.")
       .def_readonly("distance", &CurveFoot::distance, "|C(t) - q| at the foot (the interval's upper end).")
       .def_readonly("lower_bound", &CurveFoot::lower_bound, "No point of the curve is nearer.")
-      .def_readonly("point", &CurveFoot::point, "The foot point C(t).")
+      .def_property_readonly(
+          "point", [](const CurveFoot& c) { return py::array_t<double>(c.point.attr("copy")()); }, "The foot point C(t).")
       .def_readonly("t", &CurveFoot::t, "The foot's parameter.")
       .def_readonly("attained_more_than_once", &CurveFoot::attained_more_than_once,
                     "Another foot, apart from this one, is as near within the interval.")
@@ -299,7 +307,8 @@ void bind_queries(py::module_& m) {
   py::class_<CurvePoint>(m, "CurveIntersection", "An isolated point two curves share.")
       .def_readonly("t", &CurvePoint::t, "The first curve's parameter.")
       .def_readonly("s", &CurvePoint::s, "The second curve's parameter.")
-      .def_readonly("point", &CurvePoint::point, "The point.")
+      .def_property_readonly(
+          "point", [](const CurvePoint& c) { return py::array_t<double>(c.point.attr("copy")()); }, "The point.")
       .def_readonly("t_bound", &CurvePoint::t_bound, "The true t is within t_bound of t.")
       .def_readonly("s_bound", &CurvePoint::s_bound, "The true s is within s_bound of s.")
       .def_readonly("distance", &CurvePoint::distance, "|first(t) - second(s)|.")
@@ -336,12 +345,12 @@ void bind_queries(py::module_& m) {
       .def_property_readonly("point", [](const CurveSurfaceHit& h) { return point_array<3>(h.point); }, "The point.")
       .def_readonly("distance", &CurveSurfaceHit::distance, "|C(t) - F(u, v)|.")
       .def_readonly("tangential", &CurveSurfaceHit::tangential, "The curve touches the surface rather than crossing.");
-  def_curve_surface<AnyBezierCurve>(m);
-  def_curve_surface<AnyRationalCurve>(m);
-  def_curve_surface<AnyNurbsCurve>(m);
   py::class_<CurveSurfaceHits>(m, "CurveSurfaceHits", "Every point a curve shares with a surface.")
       .def_readonly("hits", &CurveSurfaceHits::hits, "The hits, ordered by t.")
       .def_readonly("eps", &CurveSurfaceHits::eps, "The rounding level used.");
+  def_curve_surface<AnyBezierCurve>(m);
+  def_curve_surface<AnyRationalCurve>(m);
+  def_curve_surface<AnyNurbsCurve>(m);
 
   py::class_<SectionPolyline>(m, "SectionPolyline", "One polyline of a plane section.")
       .def_property_readonly(

@@ -6,6 +6,7 @@
 
 #include <pybind11/operators.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <concepts>
 #include <optional>
@@ -81,10 +82,20 @@ py::array_t<double> grid_of_values(int rows, int columns, G&& g) {
 }
 
 // The derivative d^(ku+kv) F / du^ku dv^kv of any surface kind.
+// Orders up to this many (ku + kv): the derivatives' table grows as the order squared.
+constexpr int max_derivative_order = 64;
+
 template <class Surface>
 Vec3 mixed_derivative(const Surface& surface, double u, double v, int ku, int kv) {
-  if (ku < 0 || kv < 0) throw InvalidInput(detail::message("derivative: ku and kv must be >= 0, got ", ku, ", ", kv));
   return partial_derivatives(surface, u, v, ku + kv).at(ku, kv);
+}
+
+// \throws InvalidInput unless 0 <= ku, kv and ku + kv <= max_derivative_order.
+void check_orders(int ku, int kv) {
+  if (ku < 0 || kv < 0 || ku > max_derivative_order - kv) {
+    throw InvalidInput(detail::message("derivative: ku and kv must be >= 0 with ku + kv <= ", max_derivative_order,
+                                       ", got ", ku, " and ", kv));
+  }
 }
 
 // What every surface kind shares: evaluation, derivatives, unit normals and curvature over
@@ -106,6 +117,7 @@ void bind_surface_common(py::class_<Surface>& c) {
       .def(
           "derivative",
           [](const Surface& s, const DoubleArray& u, const DoubleArray& v, int ku, int kv) {
+            check_orders(ku, kv);
             return map_parameter_pairs<3>(u, v, [&](double a, double b) { return mixed_derivative(s, a, b, ku, kv); });
           },
           py::arg("u"), py::arg("v"), py::arg("ku") = 1, py::arg("kv") = 0,
@@ -126,6 +138,8 @@ void bind_surface_common(py::class_<Surface>& c) {
 }  // namespace
 
 void bind_surfaces(py::module_& m) {
+  // Registered before the functions that return it, so that their signatures name it.
+  py::class_<PatchSet> patch_set(m, "PatchSet", "Bezier patches (polynomial and rational) and their adjacency.");
   py::class_<SurfaceCurvature>(m, "SurfaceCurvature", "Curvature of a surface at a point.")
       .def_readonly("defined", &SurfaceCurvature::defined, "False where F_u x F_v vanishes away from a pole.")
       .def_readonly("gaussian", &SurfaceCurvature::gaussian, "Gaussian curvature K = k1 k2.")
@@ -158,10 +172,10 @@ void bind_surfaces(py::module_& m) {
             const py::ssize_t rows = p.degree_u() + 1;
             const py::ssize_t columns = p.degree_v() + 1;
             constexpr py::ssize_t point = sizeof(Vec3);
-            return py::array_t<double>({rows, columns, py::ssize_t{3}}, {point, point * rows, py::ssize_t{8}},
-                                       p.control_points().front().data(), self);
+            return read_only(py::array_t<double>({rows, columns, py::ssize_t{3}}, {point, point * rows, py::ssize_t{8}},
+                                                 p.control_points().front().data(), self));
           },
-          "The control net, an (n + 1, m + 1, 3) view (no copy), P_ij at [i, j].")
+          "The control net, a read-only (n + 1, m + 1, 3) view (no copy), P_ij at [i, j].")
       .def(
           "split_u", [](const BezierPatch3& p, double u) { return split_u(p, u); }, py::arg("u"),
           "The two patches over [0, u] and [u, 1] in u, each reparametrised to [0, 1].")
@@ -269,7 +283,7 @@ void bind_surfaces(py::module_& m) {
       });
   bind_surface_common(nurbs);
 
-  py::class_<PatchSet>(m, "PatchSet", "Bezier patches (polynomial and rational) and their adjacency.")
+  patch_set
       .def(py::init([](const py::sequence& patches, double relative_tolerance) {
              std::vector<AnyBezierPatch> any;
              for (const py::handle p : patches) {
@@ -318,15 +332,15 @@ void bind_surfaces(py::module_& m) {
       });
 
   m.def(
-      "read_bpt", [](const std::string& path) { return PatchSet(read_bpt(path)); }, py::arg("path"),
+      "read_bpt", [](const std::filesystem::path& path) { return PatchSet(read_bpt(path)); }, py::arg("path"),
       py::call_guard<py::gil_scoped_release>(), "The patch set of a BPT file (IoError, ParseError naming the file).");
   m.def(
-      "read_patches", [](const std::string& path) { return read_patch_set(path); }, py::arg("path"),
+      "read_patches", [](const std::filesystem::path& path) { return read_patch_set(path); }, py::arg("path"),
       py::call_guard<py::gil_scoped_release>(),
       "The patch set of a .bpt file or of a free-form .obj file (its NURBS and Bezier surfaces, joined).");
   m.def(
       "write_bpt",
-      [](const std::string& path, const PatchSet& s) {
+      [](const std::filesystem::path& path, const PatchSet& s) {
         const auto& patches = s.patches();
         py::gil_scoped_release release;
         write_bpt(path, patches);

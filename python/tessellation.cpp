@@ -2,6 +2,7 @@
 // Tessellation (its arrays as views), PreparedSurface and write_gltf in Python.
 
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <numbers>
 #include <optional>
@@ -163,7 +164,7 @@ void bind_tessellation(py::module_& m) {
   def_tessellate<LimitSurface>(
       m, [](const LimitSurface& surface, const TessellationOptions& o) { return tessellate_limit(surface, o); });
 
-  const auto write = [](const std::string& path, const RenderMesh& mesh, bool z_up, std::optional<bool> double_sided,
+  const auto write = [](const std::filesystem::path& path, const RenderMesh& mesh, bool z_up, std::optional<bool> double_sided,
                         const std::string& name) {
     const GltfOptions options{z_up, double_sided, name};
     py::gil_scoped_release release;
@@ -171,7 +172,7 @@ void bind_tessellation(py::module_& m) {
   };
   m.def(
       "write_gltf",
-      [write](const std::string& path, const Tessellation& t, bool z_up, std::optional<bool> double_sided,
+      [write](const std::filesystem::path& path, const Tessellation& t, bool z_up, std::optional<bool> double_sided,
               const std::string& name) { return write(path, t.mesh, z_up, double_sided, name); },
       py::arg("path"), py::arg("mesh"), py::kw_only(), py::arg("z_up") = true, py::arg("double_sided") = py::none(),
       py::arg("name") = "patchwork",

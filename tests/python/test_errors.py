@@ -2,6 +2,8 @@
 messages that name the file or the argument."""
 
 import pathlib
+import re
+import threading
 
 import numpy as np
 import pytest
@@ -21,8 +23,11 @@ def test_io_error_names_the_file(tmp_path: pathlib.Path) -> None:
     missing = str(tmp_path / "missing.bpt")
     with pytest.raises(pw.IoError) as caught:
         pw.read_bpt(missing)
-    assert caught.value.path == missing
+    assert caught.value.path == missing and caught.value.filename == missing
     assert str(caught.value).startswith(missing + ": ")
+    # Paths as os.PathLike too.
+    with pytest.raises(pw.IoError):
+        pw.read_bpt(tmp_path / "missing.bpt")
     assert "\n" not in str(caught.value)
 
 
@@ -73,3 +78,60 @@ def test_numerical_error_for_a_patch_without_a_normal() -> None:
         point.normal(0.5, 0.5)
     with pytest.raises(ArithmeticError):
         point.normal(0.25, 0.5)
+
+
+def test_indices_are_never_wrapped_or_truncated() -> None:
+    positions = np.eye(3)
+    bad = {
+        "faces: index 4294967298 is not in [0, 2^32)": np.array([[0, 1, 2**32 + 2]]),
+        "faces: expected integer indices, got an array of dtype float64": np.array([[0.2, 1.9, 2.99]]),
+        "faces[1]: index -1 is not in [0, 2^32)": [[0, 1, 2], [-1, 2, 0]],
+        "faces[1]: expected integer indices": [[0, 1, 2], [1.5, 2, 0]],
+        "faces: expected an": "abc",
+    }
+    for message, faces in bad.items():
+        with pytest.raises(pw.InvalidInput, match=re.escape(message)):
+            pw.Mesh(positions, faces)
+    assert pw.Mesh(positions, np.array([[0, 1, 2]], dtype=np.uint64)).face_count == 1
+    surface = pw.LimitSurface(pw.Mesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [[0, 1, 2, 3]]))
+    with pytest.raises(pw.InvalidInput, match="faces: expected integer indices"):
+        surface.evaluate([0.9], [0.5], [0.5])
+
+
+def test_views_of_checked_data_are_read_only() -> None:
+    """A mesh's indices and a patch's net were checked once, by their constructors: Python may
+    not change them behind that check."""
+    mesh = pw.Mesh(np.eye(3), [[0, 1, 2]])
+    for array in (mesh.positions, mesh.face_sizes, mesh.face_indices):
+        with pytest.raises(ValueError, match="read-only"):
+            array[0] = 7
+    patch = pw.BezierPatch(np.zeros((2, 2, 3)))
+    with pytest.raises(ValueError, match="read-only"):
+        patch.control_points[1, 1] = [np.nan, np.inf, 1e308]
+
+
+def test_derivative_orders_are_bounded() -> None:
+    patch = pw.BezierPatch(np.arange(12, dtype=float).reshape(2, 2, 3))
+    with pytest.raises(pw.InvalidInput, match="ku \\+ kv <= 64, got 2147483647 and 1"):
+        patch.derivative(0.5, 0.5, 2**31 - 1, 1)
+    assert np.array_equal(patch.derivative(0.5, 0.5, 5, 0), [0, 0, 0])  # beyond the degree
+
+
+def test_queries_from_many_threads() -> None:
+    """Every query's answer becomes Python objects only with the GIL held (pytest runs with -X
+    dev, whose allocator aborts otherwise)."""
+    a = pw.BezierCurve([[0, 0], [1, 3], [2, -3], [3, 0]])
+    b = pw.BezierCurve([[0, 0.5], [3, -0.5]])
+    loop = pw.BezierCurve([[0, 0], [3, 3], [-2, 3], [1, 0]])
+    counts: list[tuple[int, int]] = []
+
+    def work() -> None:
+        for _ in range(50):
+            counts.append((len(pw.intersect_curves(a, b).points), len(pw.self_intersections(loop).points)))
+
+    threads = [threading.Thread(target=work) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert counts == [(3, 1)] * 200

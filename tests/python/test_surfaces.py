@@ -86,3 +86,25 @@ def test_mixed_patch_set() -> None:
     points = octant.evaluate(np.array([0.2, 0.7]), np.array([0.4, 0.1]))
     # On the unit sphere the outward or inward normal is the point itself.
     assert np.allclose(np.abs(np.einsum("ij,ij->i", normals, points)), 1.0, atol=1e-14)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(1, 4), st.integers(1, 4), st.data())
+def test_rational_and_nurbs_weights_are_laid_out_as_the_net(n: int, m: int, data: st.DataObject) -> None:
+    """The rational sum over the (n + 1, m + 1) net and weights, computed in numpy, for a patch
+    and for the NURBS surface with the same (clamped, one-span) knots: the weight w_ij belongs to P_ij."""
+    net = data.draw(hnp.arrays(np.float64, (n + 1, m + 1, 3), elements=st.floats(-5, 5)))
+    weights = data.draw(hnp.arrays(np.float64, (n + 1, m + 1), elements=st.floats(0.25, 4)))
+    u, v = data.draw(st.floats(0, 1)), data.draw(st.floats(0, 1))
+    bu, bv = bernstein(n, np.array(u)), bernstein(m, np.array(v))
+    numerator = np.einsum("i,j,ij,ijk->k", bu, bv, weights, net)
+    expected = numerator / np.einsum("i,j,ij->", bu, bv, weights)
+    patch = pw.RationalBezierPatch(net, weights)
+    # The points come back from the homogeneous form (w P) / w: equal to rounding.
+    assert np.array_equal(patch.weights, weights)
+    assert np.allclose(patch.control_points, net, rtol=1e-15, atol=1e-300)
+    assert np.abs(patch(u, v) - expected).max() <= 1e-12 * (1 + np.abs(net).max())
+    surface = pw.NurbsSurface(n, m, [0] * (n + 1) + [1] * (n + 1), [0] * (m + 1) + [1] * (m + 1), net, weights)
+    assert np.abs(surface(u, v) - expected).max() <= 1e-12 * (1 + np.abs(net).max())
+    # Equal weights make a polynomial surface (all 1): the weights agree up to one factor.
+    assert np.allclose(surface.weights * weights[0, 0], weights * surface.weights[0, 0])

@@ -1,6 +1,7 @@
 """The tessellator from Python: bit for bit the C++ library's result, arrays as views without a
 copy, the GIL released, every option reachable."""
 
+import gc
 import pathlib
 import subprocess
 import threading
@@ -53,12 +54,18 @@ def test_arrays_are_views_of_the_result(teapot: pw.PatchSet) -> None:
         assert array.base is t, name  # a view: its memory is the result's
         assert array.flags["C_CONTIGUOUS"], name
     assert t.indices.dtype == np.uint32 and t.positions.dtype == np.float64
-    # Two views of one result share memory; the view keeps the result alive after the name goes.
-    assert np.shares_memory(t.positions, t.positions)
+    # The view keeps the result alive after its name is gone: the base is still the result, and
+    # memory the collector and new tessellations reuse does not overwrite it.
     positions = t.positions
-    first = positions[0].copy()
+    first = positions.copy()
     del t
-    assert np.array_equal(positions[0], first)
+    gc.collect()
+    others = [pw.tessellate(teapot, relative_tolerance=2e-3) for _ in range(3)]
+    assert type(positions.base) is pw.Tessellation
+    assert np.array_equal(positions, first) and len(others) == 3
+    # An attribute not made is an empty view of the result, of its shape.
+    bare = pw.tessellate(teapot, segments=2, uv="none")
+    assert bare.uvs.shape == (0, 2) and bare.uvs.base is bare
 
 
 def test_the_mesh_is_what_the_bound_says(teapot: pw.PatchSet) -> None:
