@@ -1,0 +1,554 @@
+// The Open CASCADE cross-check of patchwork's modeling queries (issue 19): the same cases through
+// patchwork and through OCCT in one run, each answer judged against an independent truth
+// (report/queries_cases.h), written as a Markdown table (docs/queries-crosscheck.md,
+// scripts/crosscheck-queries).
+//
+//   patchwork_queries_crosscheck --out FILE [--count N] [--commit TEXT]
+//
+// OCCT's side: GeomAPI_ProjectPointOnSurf (one per patch, Init'ed once with the patch's surface
+// and bounds, Perform per point, the least LowerDistance over the patches), GeomAPI_IntCS (per
+// patch; hits of different patches at one curve point merged, as a B-rep user would), and
+// Geom2dAPI_InterCurveCurve (tolerance 1e-6, its default). Surfaces and curves are built before
+// the clocks start; only the queries are timed.
+
+#include <GeomAPI_IntCS.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom2dAPI_InterCurveCurve.hxx>
+#include <Geom2d_BezierCurve.hxx>
+#include <Geom_BezierCurve.hxx>
+#include <IntRes2d_IntersectionPoint.hxx>
+#include <IntRes2d_IntersectionSegment.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array1OfPnt2d.hxx>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "io/bpt.h"
+#include "queries/closest_point.h"
+#include "queries/curve_intersection.h"
+#include "queries/curve_surface_intersection.h"
+#include "queries/patch_bvh.h"
+#include "queries/patch_evaluation.h"
+#include "report/format.h"
+#include "report/occt_geometry.h"
+#include "report/occt_peer.h"
+#include "report/queries_cases.h"
+
+namespace patchwork::crosscheck {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+double median(std::vector<double> x) {
+  if (x.empty()) return 0.0;
+  std::sort(x.begin(), x.end());
+  const std::size_t h = x.size() / 2;
+  return x.size() % 2 == 1 ? x[h] : 0.5 * (x[h - 1] + x[h]);
+}
+
+double total(const std::vector<double>& x) {
+  double s = 0;
+  for (const double v : x) s += v;
+  return s;
+}
+
+// One row of the table: a query kind on a family, both libraries.
+struct Row {
+  std::string query;
+  std::string family;
+  int cases = 0;
+  int truths = 0;  // true answers (for closest points: cases)
+  Tally patchwork;
+  Tally occt;
+  std::vector<double> patchwork_seconds;
+  std::vector<double> occt_seconds;
+  std::string notes;
+};
+
+// A row with no answers yet.
+Row new_row(std::string query, std::string family, std::size_t cases) {
+  Row row;
+  row.query = std::move(query), row.family = std::move(family), row.cases = static_cast<int>(cases);
+  return row;
+}
+
+gp_Pnt occt_point(const Vec3& p) { return gp_Pnt(p.x(), p.y(), p.z()); }
+Vec3 vec(const gp_Pnt& p) { return Vec3(p.X(), p.Y(), p.Z()); }
+
+void add_verdict(Tally& tally, Verdict verdict, double error) {
+  if (verdict == Verdict::right) ++tally.right, tally.max_error = std::max(tally.max_error, error);
+  if (verdict == Verdict::wrong) ++tally.wrong;
+  if (verdict == Verdict::missed) ++tally.missed;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Closest points
+
+// OCCT's projection of q onto every surface, the least distance kept.
+struct OcctFoot {
+  std::optional<double> distance;
+  std::uint32_t surface = 0;
+  double u = 0, v = 0;
+  Vec3 point = Vec3::Zero();
+  int failures = 0;
+};
+
+OcctFoot occt_closest(std::vector<GeomAPI_ProjectPointOnSurf>& projectors, const Vec3& q) {
+  OcctFoot best;
+  const gp_Pnt P = occt_point(q);
+  for (std::size_t k = 0; k < projectors.size(); ++k) {
+    try {
+      projectors[k].Perform(P);
+      if (!projectors[k].IsDone() || projectors[k].NbPoints() == 0) continue;
+      const double d = projectors[k].LowerDistance();
+      if (!best.distance || d < *best.distance) {
+        best.distance = d;
+        best.surface = static_cast<std::uint32_t>(k);
+        projectors[k].LowerDistanceParameters(best.u, best.v);
+        best.point = vec(projectors[k].NearestPoint());
+      }
+    } catch (const Standard_Failure&) {
+      ++best.failures;
+    }
+  }
+  return best;
+}
+
+// The closest-point rows of one surface. `truth(q, patchwork foot, occt foot)` gives the true
+// distance.
+template <class Truth>
+std::vector<Row> closest_point_rows(const std::string& surface_name, const PatchSet& set,
+                                    const std::vector<Handle(Geom_Surface)>& surfaces,
+                                    const std::vector<PointFamily>& families, const Truth& truth) {
+  const PatchBvh bvh(set);
+  std::vector<GeomAPI_ProjectPointOnSurf> projectors(surfaces.size());
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    double u0, u1, v0, v1;
+    surfaces[k]->Bounds(u0, u1, v0, v1);
+    projectors[k].Init(surfaces[k], u0, u1, v0, v1);
+  }
+  const double tolerance = kDistanceTolerance * set.size();
+  std::vector<Row> rows;
+  for (const PointFamily& family : families) {
+    Row row = new_row("closest point", surface_name + ": " + family.name, family.points.size());
+    row.truths = row.cases;
+    int below_truth = 0, occt_failures = 0, attained_twice = 0, uncertified = 0;
+    for (const Vec3& q : family.points) {
+      auto start = Clock::now();
+      const SurfaceClosestPoint ours = closest_point(bvh, q);
+      row.patchwork_seconds.push_back(seconds_since(start));
+      start = Clock::now();
+      const OcctFoot theirs = occt_closest(projectors, q);
+      row.occt_seconds.push_back(seconds_since(start));
+      occt_failures += theirs.failures;
+
+      const double d = truth(q, Foot{ours.patch, ours.u, ours.v},
+                             theirs.distance ? std::optional<Foot>(Foot{theirs.surface, theirs.u, theirs.v}) : std::nullopt);
+      const double our_gap = (detail::patch_point(set, ours.patch, ours.u, ours.v) - ours.point).norm();
+      Verdict verdict = judge_distance(ours.distance, our_gap, d, tolerance);
+      // The certificate must hold too.
+      if (verdict == Verdict::right && ours.lower_bound > d + tolerance) verdict = Verdict::wrong;
+      if (ours.distance - ours.lower_bound > 2 * tolerance) ++uncertified;
+      attained_twice += ours.attained_more_than_once ? 1 : 0;
+      add_verdict(row.patchwork, verdict, std::abs(ours.distance - d));
+      below_truth += ours.distance < d - tolerance ? 1 : 0;
+
+      double their_gap = 0;
+      if (theirs.distance) {
+        their_gap = (vec(surfaces[theirs.surface]->Value(theirs.u, theirs.v)) - theirs.point).norm();
+        below_truth += *theirs.distance < d - tolerance ? 1 : 0;
+      }
+      add_verdict(row.occt, judge_distance(theirs.distance, their_gap, d, tolerance),
+                  theirs.distance ? std::abs(*theirs.distance - d) : 0.0);
+    }
+    std::ostringstream notes;
+    if (attained_twice > 0) notes << "patchwork flags " << attained_twice << " as attained more than once. ";
+    if (uncertified > 0) notes << "patchwork's interval wider than 2 tolerances on " << uncertified << " (piece budget). ";
+    if (occt_failures > 0) notes << "OCCT raised " << occt_failures << " exceptions (counted as no answer on that patch). ";
+    if (below_truth > 0) notes << below_truth << " answers below the truth (truth not the minimum!). ";
+    row.notes = notes.str();
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Curves against surfaces
+
+Handle(Geom_BezierCurve) occt_curve(const BezierCurve3& curve) {
+  TColgp_Array1OfPnt poles(1, curve.degree() + 1);
+  for (int i = 0; i <= curve.degree(); ++i) poles.SetValue(i + 1, occt_point(curve.control_points()[static_cast<std::size_t>(i)]));
+  return new Geom_BezierCurve(poles);
+}
+
+// OCCT's hits of a curve on every surface; hits of different surfaces within 1e-7 in t are one.
+struct OcctHits {
+  std::vector<ReportedHit> hits;
+  int segments = 0;
+  int failures = 0;
+  int merged = 0;
+};
+
+OcctHits occt_intersect(const Handle(Geom_Curve) & curve, const std::vector<Handle(Geom_Surface)>& surfaces) {
+  OcctHits result;
+  for (std::size_t k = 0; k < surfaces.size(); ++k) {
+    try {
+      GeomAPI_IntCS intersector(curve, surfaces[k]);
+      if (!intersector.IsDone()) {
+        ++result.failures;
+        continue;
+      }
+      result.segments += intersector.NbSegments();
+      for (int i = 1; i <= intersector.NbPoints(); ++i) {
+        double u, v, w;
+        intersector.Parameters(i, u, v, w);
+        bool merged = false;
+        for (const ReportedHit& h : result.hits) merged = merged || (h.patch != k && std::abs(h.t - w) <= 1e-7);
+        if (merged) {
+          ++result.merged;
+        } else {
+          result.hits.push_back({static_cast<std::uint32_t>(k), w, u, v});
+        }
+      }
+    } catch (const Standard_Failure&) {
+      ++result.failures;
+    }
+  }
+  return result;
+}
+
+// The curve-surface rows of one surface; `truth(case, all reports)` gives the true t values.
+template <class Truth>
+std::vector<Row> curve_surface_rows(const std::string& surface_name, const PatchSet& set,
+                                    const std::vector<Handle(Geom_Surface)>& surfaces,
+                                    const std::vector<CurveFamily>& families, const Truth& truth) {
+  std::vector<Row> rows;
+  for (const CurveFamily& family : families) {
+    Row row = new_row("curve x surface", surface_name + ": " + family.name, family.cases.size());
+    std::vector<Handle(Geom_Curve)> curves;
+    for (const CurveCase& c : family.cases) curves.push_back(occt_curve(c.curve));
+    int segments = 0, failures = 0, merged = 0, flagged = 0, unresolved = 0, errors = 0;
+    for (std::size_t k = 0; k < family.cases.size(); ++k) {
+      const CurveCase& c = family.cases[k];
+      auto start = Clock::now();
+      std::vector<ReportedHit> ours;
+      try {
+        const CurveSurfaceHits hits = intersect_curve_surface(c.curve, set);
+        row.patchwork_seconds.push_back(seconds_since(start));
+        for (const CurveSurfaceHit& h : hits.hits) {
+          ours.push_back({h.patch, h.t, h.u, h.v});
+          flagged += h.tangential ? 1 : 0;
+        }
+      } catch (const std::exception&) {
+        row.patchwork_seconds.push_back(seconds_since(start));
+        ++errors;
+      }
+      start = Clock::now();
+      const OcctHits theirs = occt_intersect(curves[k], surfaces);
+      row.occt_seconds.push_back(seconds_since(start));
+      segments += theirs.segments, failures += theirs.failures, merged += theirs.merged;
+
+      std::vector<ReportedHit> all = ours;
+      all.insert(all.end(), theirs.hits.begin(), theirs.hits.end());
+      int case_unresolved = 0;
+      const std::vector<double> t = truth(c, all, case_unresolved);
+      unresolved += case_unresolved;
+      row.truths += static_cast<int>(t.size());
+      const auto judge = [&](const std::vector<ReportedHit>& hits) {
+        return match_answers(
+            t.size(), hits.size(), [&](std::size_t i, std::size_t j) { return std::abs(t[i] - hits[j].t); },
+            kParameterTolerance);
+      };
+      row.patchwork += judge(ours);
+      row.occt += judge(theirs.hits);
+    }
+    std::ostringstream notes;
+    if (flagged > 0) notes << "patchwork flags " << flagged << " hits tangential. ";
+    if (errors > 0) notes << "patchwork threw on " << errors << " cases. ";
+    if (segments > 0) notes << "OCCT reports " << segments << " segments (not counted). ";
+    if (failures > 0) notes << "OCCT failed (IsDone false or exception) " << failures << " times. ";
+    if (merged > 0) notes << merged << " OCCT hits merged across patches. ";
+    if (unresolved > 0) notes << unresolved << " mesh crossings Newton did not confirm. ";
+    row.notes = notes.str();
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Planar curves
+
+Handle(Geom2d_BezierCurve) occt_curve(const RationalBezierCurve2& curve, bool rational) {
+  TColgp_Array1OfPnt2d poles(1, curve.degree() + 1);
+  TColStd_Array1OfReal weights(1, curve.degree() + 1);
+  for (int i = 0; i <= curve.degree(); ++i) {
+    const Vec2 p = curve.control_point(i);
+    poles.SetValue(i + 1, gp_Pnt2d(p.x(), p.y()));
+    weights.SetValue(i + 1, curve.weight(i));
+  }
+  return rational ? new Geom2d_BezierCurve(poles, weights) : new Geom2d_BezierCurve(poles);
+}
+
+BezierCurve2 polynomial_curve(const RationalBezierCurve2& curve) {
+  std::vector<Vec2> P;
+  for (int i = 0; i <= curve.degree(); ++i) P.push_back(curve.control_point(i));
+  return BezierCurve2(P);
+}
+
+// An answer: a point (t, s), or an interval of t with its s ends.
+struct PlanarAnswer {
+  Vec2 ts;
+  std::optional<Vec2> t_range;
+};
+
+std::vector<PlanarAnswer> ours_planar(const CurvePair& pair, int& flagged) {
+  const CurveIntersections<2> result = pair.rational ? intersect_curves(pair.first, pair.second)
+                                                     : intersect_curves(polynomial_curve(pair.first),
+                                                                        polynomial_curve(pair.second));
+  std::vector<PlanarAnswer> answers;
+  for (const auto& x : result.points) answers.push_back({Vec2(x.t, x.s), {}}), flagged += x.tangential ? 1 : 0;
+  for (const auto& o : result.overlaps) answers.push_back({Vec2(o.t0, o.s0), Vec2(std::min(o.t0, o.t1), std::max(o.t0, o.t1))});
+  return answers;
+}
+
+std::vector<PlanarAnswer> occt_planar(const Geom2dAPI_InterCurveCurve& intersection) {
+  std::vector<PlanarAnswer> answers;
+  const Geom2dInt_GInter& result = intersection.Intersector();
+  for (int i = 1; i <= result.NbPoints(); ++i) {
+    answers.push_back({Vec2(result.Point(i).ParamOnFirst(), result.Point(i).ParamOnSecond()), {}});
+  }
+  for (int i = 1; i <= result.NbSegments(); ++i) {
+    const IntRes2d_IntersectionSegment& segment = result.Segment(i);
+    const double t0 = segment.HasFirstPoint() ? segment.FirstPoint().ParamOnFirst() : 0.0;
+    const double t1 = segment.HasLastPoint() ? segment.LastPoint().ParamOnFirst() : 1.0;
+    const double s0 = segment.HasFirstPoint() ? segment.FirstPoint().ParamOnSecond() : 0.0;
+    answers.push_back({Vec2(t0, s0), Vec2(std::min(t0, t1), std::max(t0, t1))});
+  }
+  return answers;
+}
+
+// Judges the answers of one pair: points against the truth's points (a segment counts as a
+// point at its start), or against the overlap: one interval matching it is right, points or a
+// wrong interval wrong, nothing missed.
+Tally judge_planar(const CurvePair& pair, const PairTruth& truth, const std::vector<PlanarAnswer>& answers) {
+  if (truth.overlap) {
+    Tally tally;
+    const Vec2 range = pair.overlap.value_or(Vec2(0, 1));
+    int matching = 0;
+    for (const PlanarAnswer& a : answers) {
+      const bool match = a.t_range && std::abs((*a.t_range)[0] - range[0]) <= kParameterTolerance &&
+                         std::abs((*a.t_range)[1] - range[1]) <= kParameterTolerance;
+      matching += match ? 1 : 0;
+      if (match) tally.max_error = std::max(tally.max_error, ((*a.t_range) - range).cwiseAbs().maxCoeff());
+    }
+    // One matching interval is the answer; more are the answer twice; points or other intervals
+    // are wrong (the points lie on both curves, but the answer is the interval).
+    tally.right = matching > 0 ? 1 : 0;
+    tally.twice = std::max(0, matching - 1);
+    tally.wrong = static_cast<int>(answers.size()) - matching;
+    tally.missed = matching == 0 ? 1 : 0;
+    return tally;
+  }
+  return match_answers(
+      truth.points.size(), answers.size(),
+      [&](std::size_t i, std::size_t j) { return (truth.points[i] - answers[j].ts).cwiseAbs().maxCoeff(); },
+      kParameterTolerance);
+}
+
+std::vector<Row> planar_rows(const std::vector<PairFamily>& families) {
+  std::vector<Row> rows;
+  for (const PairFamily& family : families) {
+    Row row = new_row("2D curve x curve", family.name, family.pairs.size());
+    int flagged = 0, undecided = 0, segments = 0, failures = 0, errors = 0;
+    std::vector<std::pair<Handle(Geom2d_Curve), Handle(Geom2d_Curve)>> curves;
+    for (const CurvePair& pair : family.pairs) {
+      curves.emplace_back(occt_curve(pair.first, pair.rational), occt_curve(pair.second, pair.rational));
+    }
+    for (std::size_t k = 0; k < family.pairs.size(); ++k) {
+      const CurvePair& pair = family.pairs[k];
+      const PairTruth truth = pair_truth(pair);
+      undecided += truth.undecided;
+      row.truths += truth.overlap ? 1 : static_cast<int>(truth.points.size());
+
+      auto start = Clock::now();
+      std::vector<PlanarAnswer> ours;
+      try {
+        ours = ours_planar(pair, flagged);
+      } catch (const std::exception&) {
+        ++errors;
+      }
+      row.patchwork_seconds.push_back(seconds_since(start));
+      start = Clock::now();
+      std::vector<PlanarAnswer> theirs;
+      try {
+        const Geom2dAPI_InterCurveCurve intersection(curves[k].first, curves[k].second);
+        theirs = occt_planar(intersection);
+        segments += intersection.NbSegments();
+      } catch (const Standard_Failure&) {
+        ++failures;
+      }
+      row.occt_seconds.push_back(seconds_since(start));
+      row.patchwork += judge_planar(pair, truth, ours);
+      row.occt += judge_planar(pair, truth, theirs);
+    }
+    std::ostringstream notes;
+    if (flagged > 0) notes << "patchwork flags " << flagged << " points tangential. ";
+    if (errors > 0) notes << "patchwork threw on " << errors << " pairs. ";
+    if (segments > 0) notes << "OCCT reports " << segments << " segments. ";
+    if (failures > 0) notes << "OCCT raised " << failures << " exceptions. ";
+    if (undecided > 0) notes << undecided << " resultant roots at an end left undecided (not in the truth). ";
+    row.notes = notes.str();
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The document
+
+std::string machine() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
+}
+
+std::string tally_cell(const Tally& t, bool twice) {
+  std::string cell = std::to_string(t.right) + " / " + std::to_string(t.wrong) + " / " + std::to_string(t.missed);
+  if (twice) cell += " / " + std::to_string(t.twice);
+  return cell;
+}
+
+std::string microseconds(double seconds) { return performance::text("%.3g", seconds * 1e6); }
+
+std::string document(const std::vector<Row>& rows, const std::string& commit, int count, double run_seconds) {
+  std::ostringstream out;
+  out << "# Modeling queries: patchwork against Open CASCADE\n\n"
+      << "Written by `scripts/crosscheck-queries` (report/queries_crosscheck.cpp) in one run: the same cases\n"
+      << "through patchwork's queries and through Open CASCADE " << performance::occt_version()
+      << ", each answer judged against an independent truth\n(definitions below the table). Machine: " << machine()
+      << "; one thread, Release build; commit " << commit << "; " << count
+      << " random cases per random family; the run took " << performance::text("%.0f", run_seconds) << " s.\n\n"
+      << "Columns: right / wrong / missed (and / reported twice for intersections) per library; the time is the\n"
+      << "median of one query (one point, one curve against the whole surface, one pair), measured side by side; the\n"
+      << "ratio is patchwork's queries per second over OCCT's, from the total times of the family. The error is the\n"
+      << "largest of a right answer (distance for closest points, parameter for intersections).\n\n"
+      << "| query | family | cases | true answers | patchwork | OCCT | patchwork us | OCCT us | speed ratio | max error patchwork / OCCT |\n"
+      << "|---|---|---:|---:|---|---|---:|---:|---:|---|\n";
+  for (const Row& row : rows) {
+    const bool twice = row.query != "closest point";
+    const double ours = total(row.patchwork_seconds), theirs = total(row.occt_seconds);
+    out << "| " << row.query << " | " << row.family << " | " << row.cases << " | " << row.truths << " | "
+        << tally_cell(row.patchwork, twice) << " | " << tally_cell(row.occt, twice) << " | "
+        << microseconds(median(row.patchwork_seconds)) << " | " << microseconds(median(row.occt_seconds)) << " | "
+        << performance::text("%.2f", ours > 0 ? theirs / ours : 0.0) << " | "
+        << performance::text("%.1e", row.patchwork.max_error) << " / " << performance::text("%.1e", row.occt.max_error)
+        << " |\n";
+  }
+  out << "\nNotes per row (empty rows left out):\n\n";
+  for (const Row& row : rows) {
+    if (!row.notes.empty()) out << "- " << row.query << ", " << row.family << ": " << row.notes << "\n";
+  }
+  return out.str();
+}
+
+struct Arguments {
+  std::string out;
+  std::string commit = "unknown";
+  int count = 200;
+};
+
+Arguments parse(int argc, char** argv) {
+  Arguments a;
+  for (int k = 1; k < argc; ++k) {
+    const std::string arg = argv[k];
+    if (arg == "--out" && k + 1 < argc) {
+      a.out = argv[++k];
+    } else if (arg == "--commit" && k + 1 < argc) {
+      a.commit = argv[++k];
+    } else if (arg == "--count" && k + 1 < argc) {
+      a.count = std::stoi(argv[++k]);
+    } else {
+      throw InvalidInput("patchwork_queries_crosscheck: unknown argument '" + arg +
+                         "' (usage: --out FILE [--count N] [--commit TEXT])");
+    }
+  }
+  if (a.out.empty()) throw InvalidInput("patchwork_queries_crosscheck: --out FILE is required");
+  return a;
+}
+
+int run(const Arguments& arguments) {
+  const auto start = Clock::now();
+  const int count = arguments.count;
+  const PatchSet teapot(read_bpt(std::string(PATCHWORK_SOURCE_DIR) + "/data/teapot.bpt"));
+  const Sphere sphere;
+  const NurbsSurface sphere_nurbs = sphere_surface(sphere);
+  const PatchSet sphere_set = nurbs_patch_set(sphere_nurbs);
+  std::vector<Handle(Geom_Surface)> teapot_surfaces;
+  for (const BezierPatch3& patch : teapot.patches()) teapot_surfaces.push_back(performance::detail::occt_bezier_surface(patch));
+  const std::vector<Handle(Geom_Surface)> sphere_surfaces{performance::detail::occt_bspline_surface(sphere_nurbs)};
+  const SampledPatches samples = sample_patches(teapot, 48);
+
+  std::vector<Row> rows;
+  const auto add = [&](std::vector<Row> more) {
+    for (Row& row : more) {
+      std::cerr << row.query << ", " << row.family << ": done\n";
+      rows.push_back(std::move(row));
+    }
+  };
+  add(closest_point_rows("teapot", teapot, teapot_surfaces, teapot_point_families(teapot, count, 19001),
+                         [&](const Vec3& q, const Foot& ours, const std::optional<Foot>& theirs) {
+                           std::vector<Foot> feet{ours};
+                           if (theirs) feet.push_back(*theirs);
+                           return distance_truth(teapot, samples, q, feet).distance;
+                         }));
+  add(closest_point_rows("sphere", sphere_set, sphere_surfaces, sphere_point_families(sphere, count, 19002),
+                         [&](const Vec3& q, const Foot&, const std::optional<Foot>&) { return sphere_distance(sphere, q); }));
+  add(curve_surface_rows("teapot", teapot, teapot_surfaces, teapot_curve_families(teapot, count, 19003),
+                         [&](const CurveCase& c, const std::vector<ReportedHit>& reports, int& unresolved) {
+                           const HitTruth truth = teapot_hit_truth(teapot, samples, c, reports);
+                           unresolved = truth.unresolved;
+                           return truth.t;
+                         }));
+  add(curve_surface_rows("sphere", sphere_set, sphere_surfaces, sphere_curve_families(sphere, count, 19004),
+                         [&](const CurveCase& c, const std::vector<ReportedHit>&, int&) {
+                           return sphere_hit_truth(c, sphere);
+                         }));
+  add(planar_rows(curve_pair_families(count, 19005)));
+
+  write_file_atomically(arguments.out, document(rows, arguments.commit, count, seconds_since(start)));
+  return 0;
+}
+
+}  // namespace
+}  // namespace patchwork::crosscheck
+
+int main(int argc, char** argv) {
+  try {
+    return patchwork::crosscheck::run(patchwork::crosscheck::parse(argc, argv));
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+}
