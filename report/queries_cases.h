@@ -149,7 +149,7 @@ struct CurveFamily {
 
 /// Random lines and cubics through a box around the sphere, and lines tangent to it (at the
 /// poles and seams of its patches, where the tangent lines are exactly dyadic, and at random
-/// points); `count` each. Control points are dyadic.
+/// points); `count` each. The random curves' control points are dyadic.
 std::vector<CurveFamily> sphere_curve_families(const Sphere& sphere, int count, std::uint64_t seed);
 /// Random lines and cubics through the teapot's box, lines through the midpoints of its shared
 /// edges, and lines tangent to it at random points where it is convex (K > 0) along a principal

@@ -3,7 +3,7 @@
 // (report/queries_cases.h), written as a Markdown table (docs/queries-crosscheck.md,
 // scripts/crosscheck-queries).
 //
-//   patchwork_queries_crosscheck --out FILE [--count N] [--commit TEXT]
+//   patchwork_queries_crosscheck --out FILE [--count N] [--commit TEXT] [--verbose]
 //
 // OCCT's side: GeomAPI_ProjectPointOnSurf (one per patch, Init'ed once with the patch's surface
 // and bounds, Perform per point, the least LowerDistance over the patches), GeomAPI_IntCS (per
@@ -52,6 +52,16 @@ namespace patchwork::crosscheck {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// --verbose: every case where a library is not right, with the truth and both answers, on stderr.
+bool verbose = false;
+
+std::string list(const std::vector<double>& x) {
+  std::ostringstream out;
+  out.precision(17);
+  for (const double v : x) out << v << " ";
+  return out.str();
+}
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
@@ -275,8 +285,16 @@ std::vector<Row> curve_surface_rows(const std::string& surface_name, const Patch
             t.size(), hits.size(), [&](std::size_t i, std::size_t j) { return std::abs(t[i] - hits[j].t); },
             kParameterTolerance);
       };
-      row.patchwork += judge(ours);
-      row.occt += judge(theirs.hits);
+      const Tally a = judge(ours), b = judge(theirs.hits);
+      row.patchwork += a;
+      row.occt += b;
+      if (verbose && (a.wrong + a.missed + a.twice + b.wrong + b.missed + b.twice) > 0) {
+        std::vector<double> ta, tb;
+        for (const ReportedHit& h : ours) ta.push_back(h.t);
+        for (const ReportedHit& h : theirs.hits) tb.push_back(h.t);
+        std::cerr << row.family << " case " << k << ": truth " << list(t) << "| patchwork " << list(ta) << "| OCCT "
+                  << list(tb) << "\n";
+      }
     }
     std::ostringstream notes;
     if (flagged > 0) notes << "patchwork flags " << flagged << " hits tangential. ";
@@ -311,19 +329,30 @@ BezierCurve2 polynomial_curve(const RationalBezierCurve2& curve) {
   return BezierCurve2(P);
 }
 
-// An answer: a point (t, s), or an interval of t with its s ends.
+// An answer: a point (t, s), or intervals of t and s (an overlap, or OCCT's segment: where the
+// curves are within its tolerance) with (t, s) at one end.
 struct PlanarAnswer {
   Vec2 ts;
   std::optional<Vec2> t_range;
+  std::optional<Vec2> s_range;
 };
+
+// The ordered interval of two values.
+Vec2 ordered(double a, double b) { return Vec2(std::min(a, b), std::max(a, b)); }
+
+// How far x lies outside the answer's range (or from its point where it has none).
+double outside(double x, double point, const std::optional<Vec2>& range) {
+  if (!range) return std::abs(x - point);
+  return std::max({0.0, range->x() - x, x - range->y()});
+}
 
 std::vector<PlanarAnswer> ours_planar(const CurvePair& pair, int& flagged) {
   const CurveIntersections<2> result = pair.rational ? intersect_curves(pair.first, pair.second)
                                                      : intersect_curves(polynomial_curve(pair.first),
                                                                         polynomial_curve(pair.second));
   std::vector<PlanarAnswer> answers;
-  for (const auto& x : result.points) answers.push_back({Vec2(x.t, x.s), {}}), flagged += x.tangential ? 1 : 0;
-  for (const auto& o : result.overlaps) answers.push_back({Vec2(o.t0, o.s0), Vec2(std::min(o.t0, o.t1), std::max(o.t0, o.t1))});
+  for (const auto& x : result.points) answers.push_back({Vec2(x.t, x.s), {}, {}}), flagged += x.tangential ? 1 : 0;
+  for (const auto& o : result.overlaps) answers.push_back({Vec2(o.t0, o.s0), ordered(o.t0, o.t1), ordered(o.s0, o.s1)});
   return answers;
 }
 
@@ -331,20 +360,21 @@ std::vector<PlanarAnswer> occt_planar(const Geom2dAPI_InterCurveCurve& intersect
   std::vector<PlanarAnswer> answers;
   const Geom2dInt_GInter& result = intersection.Intersector();
   for (int i = 1; i <= result.NbPoints(); ++i) {
-    answers.push_back({Vec2(result.Point(i).ParamOnFirst(), result.Point(i).ParamOnSecond()), {}});
+    answers.push_back({Vec2(result.Point(i).ParamOnFirst(), result.Point(i).ParamOnSecond()), {}, {}});
   }
   for (int i = 1; i <= result.NbSegments(); ++i) {
     const IntRes2d_IntersectionSegment& segment = result.Segment(i);
     const double t0 = segment.HasFirstPoint() ? segment.FirstPoint().ParamOnFirst() : 0.0;
     const double t1 = segment.HasLastPoint() ? segment.LastPoint().ParamOnFirst() : 1.0;
     const double s0 = segment.HasFirstPoint() ? segment.FirstPoint().ParamOnSecond() : 0.0;
-    answers.push_back({Vec2(t0, s0), Vec2(std::min(t0, t1), std::max(t0, t1))});
+    const double s1 = segment.HasLastPoint() ? segment.LastPoint().ParamOnSecond() : 1.0;
+    answers.push_back({Vec2(t0, s0), ordered(t0, t1), ordered(s0, s1)});
   }
   return answers;
 }
 
-// Judges the answers of one pair: points against the truth's points (a segment counts as a
-// point at its start), or against the overlap: one interval matching it is right, points or a
+// Judges the answers of one pair: points against the truth's points (an interval answer matches
+// a true point inside it), or against the overlap: one interval matching it is right, points or a
 // wrong interval wrong, nothing missed.
 Tally judge_planar(const CurvePair& pair, const PairTruth& truth, const std::vector<PlanarAnswer>& answers) {
   if (truth.overlap) {
@@ -367,7 +397,10 @@ Tally judge_planar(const CurvePair& pair, const PairTruth& truth, const std::vec
   }
   return match_answers(
       truth.points.size(), answers.size(),
-      [&](std::size_t i, std::size_t j) { return (truth.points[i] - answers[j].ts).cwiseAbs().maxCoeff(); },
+      [&](std::size_t i, std::size_t j) {
+        const PlanarAnswer& a = answers[j];
+        return std::max(outside(truth.points[i].x(), a.ts.x(), a.t_range), outside(truth.points[i].y(), a.ts.y(), a.s_range));
+      },
       kParameterTolerance);
 }
 
@@ -376,6 +409,7 @@ std::vector<Row> planar_rows(const std::vector<PairFamily>& families) {
   for (const PairFamily& family : families) {
     Row row = new_row("2D curve x curve", family.name, family.pairs.size());
     int flagged = 0, undecided = 0, segments = 0, failures = 0, errors = 0;
+    double longest = 0, overlap_end_error = 0;
     std::vector<std::pair<Handle(Geom2d_Curve), Handle(Geom2d_Curve)>> curves;
     for (const CurvePair& pair : family.pairs) {
       curves.emplace_back(occt_curve(pair.first, pair.rational), occt_curve(pair.second, pair.rational));
@@ -394,24 +428,53 @@ std::vector<Row> planar_rows(const std::vector<PairFamily>& families) {
         ++errors;
       }
       row.patchwork_seconds.push_back(seconds_since(start));
+      if (verbose && row.patchwork_seconds.back() > 0.01) {
+        std::cerr << family.name << " pair " << k << ": patchwork took " << row.patchwork_seconds.back() << " s\n";
+      }
       start = Clock::now();
       std::vector<PlanarAnswer> theirs;
       try {
         const Geom2dAPI_InterCurveCurve intersection(curves[k].first, curves[k].second);
         theirs = occt_planar(intersection);
         segments += intersection.NbSegments();
+        for (const PlanarAnswer& a : theirs) {
+          if (a.t_range) longest = std::max(longest, a.t_range->y() - a.t_range->x());
+        }
       } catch (const Standard_Failure&) {
         ++failures;
       }
       row.occt_seconds.push_back(seconds_since(start));
-      row.patchwork += judge_planar(pair, truth, ours);
-      row.occt += judge_planar(pair, truth, theirs);
+      const Tally a = judge_planar(pair, truth, ours), b = judge_planar(pair, truth, theirs);
+      if (truth.overlap && pair.overlap) {
+        for (const PlanarAnswer& x : theirs) {
+          if (x.t_range) overlap_end_error = std::max(overlap_end_error, (*x.t_range - *pair.overlap).cwiseAbs().maxCoeff());
+        }
+      }
+      row.patchwork += a;
+      row.occt += b;
+      if (verbose && (a.wrong + a.missed + a.twice + b.wrong + b.missed + b.twice) > 0) {
+        std::ostringstream line;
+        line.precision(17);
+        line << family.name << " pair " << k << ": truth" << (truth.overlap ? " overlap" : "");
+        for (const Vec2& x : truth.points) line << " (" << x.x() << ", " << x.y() << ")";
+        for (const auto* answers : {&ours, &theirs}) {
+          line << (answers == &ours ? " | patchwork" : " | OCCT");
+          for (const PlanarAnswer& x : *answers) {
+            line << " (" << x.ts.x() << ", " << x.ts.y() << ")";
+            if (x.t_range) line << "[t " << x.t_range->x() << " .. " << x.t_range->y() << "]";
+          }
+        }
+        std::cerr << line.str() << "\n";
+      }
     }
     std::ostringstream notes;
     if (flagged > 0) notes << "patchwork flags " << flagged << " points tangential. ";
     if (errors > 0) notes << "patchwork threw on " << errors << " pairs. ";
-    if (segments > 0) notes << "OCCT reports " << segments << " segments. ";
+    if (segments > 0) notes << "OCCT reports " << segments << " segments (the longest " << performance::text("%.2g", longest) << " in t). ";
     if (failures > 0) notes << "OCCT raised " << failures << " exceptions. ";
+    if (overlap_end_error > 0) {
+      notes << "OCCT's segments end up to " << performance::text("%.2g", overlap_end_error) << " in t from the overlap's ends. ";
+    }
     if (undecided > 0) notes << undecided << " resultant roots at an end left undecided (not in the truth). ";
     row.notes = notes.str();
     rows.push_back(std::move(row));
@@ -487,11 +550,13 @@ Arguments parse(int argc, char** argv) {
       a.out = argv[++k];
     } else if (arg == "--commit" && k + 1 < argc) {
       a.commit = argv[++k];
+    } else if (arg == "--verbose") {
+      verbose = true;
     } else if (arg == "--count" && k + 1 < argc) {
       a.count = std::stoi(argv[++k]);
     } else {
       throw InvalidInput("patchwork_queries_crosscheck: unknown argument '" + arg +
-                         "' (usage: --out FILE [--count N] [--commit TEXT])");
+                         "' (usage: --out FILE [--count N] [--commit TEXT] [--verbose])");
     }
   }
   if (a.out.empty()) throw InvalidInput("patchwork_queries_crosscheck: --out FILE is required");

@@ -138,7 +138,9 @@ inline std::vector<RootInterval> isolated_roots(const Polynomial& f, const mpq_c
       roots.push_back({x.hi, x.hi});
       continue;
     }
-    const int sign_lo = sgn(value(g, x.lo));
+    // g changes sign at its simple root only; if lo is a root itself (the end a, or a split point),
+    // the sign just right of it is the opposite of g(hi)'s.
+    const int sign_lo = value(g, x.lo) != 0 ? sgn(value(g, x.lo)) : -sgn(value(g, x.hi));
     while (x.hi - x.lo > width) {
       const mpq_class mid = (x.lo + x.hi) / 2;
       const int sign = sgn(value(g, mid));
