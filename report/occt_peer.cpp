@@ -1,7 +1,5 @@
 #include "report/occt_peer.h"
 
-#include "report/occt_geometry.h"
-
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRep_Builder.hxx>
@@ -29,6 +27,7 @@
 #include <utility>
 
 #include "core/errors.h"
+#include "report/occt_geometry.h"
 
 namespace patchwork::performance {
 namespace {
@@ -207,8 +206,8 @@ OcctRun timed_enough(const std::function<OcctRun(int repeats)>& tessellate, int 
 OcctRun occt_tessellate(const NurbsSurface& surface, double linear_deflection, double angular_deflection, int repeats) {
   check_meshing_arguments(linear_deflection, angular_deflection, repeats);
   check_degrees("occt_tessellate", surface);
-  return timed_mesh([&] { return make_compound({make_face(detail::occt_bspline_surface(surface))}); }, linear_deflection,
-                    angular_deflection, repeats);
+  return timed_mesh([&] { return make_compound({make_face(detail::occt_bspline_surface(surface))}); },
+                    linear_deflection, angular_deflection, repeats);
 }
 
 std::vector<SurfaceJet> occt_evaluate(const NurbsSurface& surface, std::span<const Vec2> parameters) {

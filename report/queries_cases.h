@@ -13,8 +13,9 @@
 //   curve x sphere             the real roots in [0, 1] of |C(t) - c|^2 - r^2, exactly (GMP
 //                              rationals, Sturm sequences: the control points are doubles, so
 //                              rationals); a constructed tangent contact is one answer
-//   curve x teapot             the reported hits that lie on both (|F(u, v) - C(t)| small),
-//                              merged, and hits a dense mesh shows that Newton confirms
+//   curve x teapot             the reported hits that lie on both (|F(u, v) - C(t)| small)
+//                              and lead Newton to a root, merged, and hits a dense mesh shows
+//                              that Newton confirms
 //   2D curve x curve           the resultant in s of the two curves' equations in t, exactly,
 //                              its real roots in [0, 1], each with the t where A(t) = B(s)
 //                              (found in floating point, checked in [0, 1]); an identically
@@ -179,10 +180,11 @@ struct HitTruth {
   /// Crossings of the sampled mesh near no true hit that Newton did not confirm.
   int unresolved = 0;
 };
-/// The reports within 1e-7 of the size of both curve and patch, merged where within
-/// kParameterTolerance / 100 in t, with the contact where the case has one, and the crossings of
-/// the grid of `samples` (as triangles) with the curve's polyline (32 pieces) that Newton on
-/// F(u, v) = C(t) confirms.
+/// The reports within 1e-7 of the size of both curve and patch from which Newton on
+/// F(u, v) = C(t) reaches a root (to 1e-12 of the size) within kParameterTolerance in t, merged
+/// where within kParameterTolerance / 100; the contact where the case has one; and the crossings
+/// of the grid of `samples` (as triangles) with the curve's polyline (32 pieces) that Newton
+/// confirms.
 HitTruth teapot_hit_truth(const PatchSet& set, const SampledPatches& samples, const CurveCase& c,
                           std::span<const ReportedHit> reports);
 

@@ -11,10 +11,10 @@
 // Geom2dAPI_InterCurveCurve (tolerance 1e-6, its default). Surfaces and curves are built before
 // the clocks start; only the queries are timed.
 
-#include <GeomAPI_IntCS.hxx>
-#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom2dAPI_InterCurveCurve.hxx>
 #include <Geom2d_BezierCurve.hxx>
+#include <GeomAPI_IntCS.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_BezierCurve.hxx>
 #include <IntRes2d_IntersectionPoint.hxx>
 #include <IntRes2d_IntersectionSegment.hxx>
@@ -71,6 +71,8 @@ double median(std::vector<double> x) {
   const std::size_t h = x.size() / 2;
   return x.size() % 2 == 1 ? x[h] : 0.5 * (x[h - 1] + x[h]);
 }
+
+double slowest(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end()); }
 
 double total(const std::vector<double>& x) {
   double s = 0;
@@ -168,8 +170,9 @@ std::vector<Row> closest_point_rows(const std::string& surface_name, const Patch
       row.occt_seconds.push_back(seconds_since(start));
       occt_failures += theirs.failures;
 
-      const double d = truth(q, Foot{ours.patch, ours.u, ours.v},
-                             theirs.distance ? std::optional<Foot>(Foot{theirs.surface, theirs.u, theirs.v}) : std::nullopt);
+      const double d =
+          truth(q, Foot{ours.patch, ours.u, ours.v},
+                theirs.distance ? std::optional<Foot>(Foot{theirs.surface, theirs.u, theirs.v}) : std::nullopt);
       const double our_gap = (detail::patch_point(set, ours.patch, ours.u, ours.v) - ours.point).norm();
       Verdict verdict = judge_distance(ours.distance, our_gap, d, tolerance);
       // The certificate must hold too.
@@ -189,8 +192,10 @@ std::vector<Row> closest_point_rows(const std::string& surface_name, const Patch
     }
     std::ostringstream notes;
     if (attained_twice > 0) notes << "patchwork flags " << attained_twice << " as attained more than once. ";
-    if (uncertified > 0) notes << "patchwork's interval wider than 2 tolerances on " << uncertified << " (piece budget). ";
-    if (occt_failures > 0) notes << "OCCT raised " << occt_failures << " exceptions (counted as no answer on that patch). ";
+    if (uncertified > 0)
+      notes << "patchwork's interval wider than 2 tolerances on " << uncertified << " (piece budget). ";
+    if (occt_failures > 0)
+      notes << "OCCT raised " << occt_failures << " exceptions (counted as no answer on that patch). ";
     if (below_truth > 0) notes << below_truth << " answers below the truth (truth not the minimum!). ";
     row.notes = notes.str();
     rows.push_back(std::move(row));
@@ -203,7 +208,8 @@ std::vector<Row> closest_point_rows(const std::string& surface_name, const Patch
 
 Handle(Geom_BezierCurve) occt_curve(const BezierCurve3& curve) {
   TColgp_Array1OfPnt poles(1, curve.degree() + 1);
-  for (int i = 0; i <= curve.degree(); ++i) poles.SetValue(i + 1, occt_point(curve.control_points()[static_cast<std::size_t>(i)]));
+  for (int i = 0; i <= curve.degree(); ++i)
+    poles.SetValue(i + 1, occt_point(curve.control_points()[static_cast<std::size_t>(i)]));
   return new Geom_BezierCurve(poles);
 }
 
@@ -347,9 +353,9 @@ double outside(double x, double point, const std::optional<Vec2>& range) {
 }
 
 std::vector<PlanarAnswer> ours_planar(const CurvePair& pair, int& flagged) {
-  const CurveIntersections<2> result = pair.rational ? intersect_curves(pair.first, pair.second)
-                                                     : intersect_curves(polynomial_curve(pair.first),
-                                                                        polynomial_curve(pair.second));
+  const CurveIntersections<2> result =
+      pair.rational ? intersect_curves(pair.first, pair.second)
+                    : intersect_curves(polynomial_curve(pair.first), polynomial_curve(pair.second));
   std::vector<PlanarAnswer> answers;
   for (const auto& x : result.points) answers.push_back({Vec2(x.t, x.s), {}, {}}), flagged += x.tangential ? 1 : 0;
   for (const auto& o : result.overlaps) answers.push_back({Vec2(o.t0, o.s0), ordered(o.t0, o.t1), ordered(o.s0, o.s1)});
@@ -399,7 +405,8 @@ Tally judge_planar(const CurvePair& pair, const PairTruth& truth, const std::vec
       truth.points.size(), answers.size(),
       [&](std::size_t i, std::size_t j) {
         const PlanarAnswer& a = answers[j];
-        return std::max(outside(truth.points[i].x(), a.ts.x(), a.t_range), outside(truth.points[i].y(), a.ts.y(), a.s_range));
+        return std::max(outside(truth.points[i].x(), a.ts.x(), a.t_range),
+                        outside(truth.points[i].y(), a.ts.y(), a.s_range));
       },
       kParameterTolerance);
 }
@@ -447,7 +454,8 @@ std::vector<Row> planar_rows(const std::vector<PairFamily>& families) {
       const Tally a = judge_planar(pair, truth, ours), b = judge_planar(pair, truth, theirs);
       if (truth.overlap && pair.overlap) {
         for (const PlanarAnswer& x : theirs) {
-          if (x.t_range) overlap_end_error = std::max(overlap_end_error, (*x.t_range - *pair.overlap).cwiseAbs().maxCoeff());
+          if (x.t_range)
+            overlap_end_error = std::max(overlap_end_error, (*x.t_range - *pair.overlap).cwiseAbs().maxCoeff());
         }
       }
       row.patchwork += a;
@@ -470,10 +478,13 @@ std::vector<Row> planar_rows(const std::vector<PairFamily>& families) {
     std::ostringstream notes;
     if (flagged > 0) notes << "patchwork flags " << flagged << " points tangential. ";
     if (errors > 0) notes << "patchwork threw on " << errors << " pairs. ";
-    if (segments > 0) notes << "OCCT reports " << segments << " segments (the longest " << performance::text("%.2g", longest) << " in t). ";
+    if (segments > 0)
+      notes << "OCCT reports " << segments << " segments (the longest " << performance::text("%.2g", longest)
+            << " in t). ";
     if (failures > 0) notes << "OCCT raised " << failures << " exceptions. ";
     if (overlap_end_error > 0) {
-      notes << "OCCT's segments end up to " << performance::text("%.2g", overlap_end_error) << " in t from the overlap's ends. ";
+      notes << "OCCT's segments end up to " << performance::text("%.2g", overlap_end_error)
+            << " in t from the overlap's ends. ";
     }
     if (undecided > 0) notes << undecided << " resultant roots at an end left undecided (not in the truth). ";
     row.notes = notes.str();
@@ -505,7 +516,96 @@ std::string tally_cell(const Tally& t, bool twice) {
 
 std::string microseconds(double seconds) { return performance::text("%.3g", seconds * 1e6); }
 
-std::string document(const std::vector<Row>& rows, const std::string& commit, int count, double run_seconds) {
+// The sizes tolerances are relative to: the diagonals of the control points' boxes.
+struct Sizes {
+  double teapot;
+  double sphere;
+};
+
+// How every number of the table is made: the truths, the matching, the timing.
+std::string definitions(const Sizes& sizes) {
+  std::ostringstream out;
+  out << "## How the table is made\n\n"
+      << "Everything comes from `report/queries_cases.h` (the cases and truths, no Open CASCADE, tested by\n"
+      << "`tests/report/queries_cases_test.cpp`) and `report/queries_crosscheck.cpp` (both libraries, the table).\n"
+      << "The size below is the diagonal of the box of the control points: teapot "
+      << performance::text("%.4g", sizes.teapot) << ", sphere " << performance::text("%.4g", sizes.sphere) << ".\n\n"
+      << "**Closest point.** patchwork: `closest_point(bvh, q)`, the `PatchBvh` built once. OCCT: one\n"
+      << "`GeomAPI_ProjectPointOnSurf` per patch (the teapot's 32 `Geom_BezierSurface`s; the sphere as one\n"
+      << "`Geom_BSplineSurface`, the same NURBS surface), `Init`ed once with the surface and its bounds\n"
+      << "outside the timing, then `Perform(q)` on every patch and the least `LowerDistance` kept. OCCT gets\n"
+      << "no bounding-box culling over patches (a caller could add it; on the teapot it would save part of\n"
+      << "the 32 projections a point).\n\n"
+      << "- Truth, sphere: `||q - c| - r|` in closed form, c = (1/4, -1/2, 1/8), r = 3/2 (the NURBS sphere's\n"
+      << "  weights are rounded doubles: it is that sphere to about 1e-16).\n"
+      << "- Truth, teapot: the least of (a) every sample of a 48 x 48 grid on every patch, (b) local Newton\n"
+      << "  (`newton_foot`, queries/patch_evaluation.h) from both libraries' feet, (c) the same Newton from the\n"
+      << "  nearest sample of every patch whose nearest sample, less the patch's reach (n max |P_(i+1)j - P_ij|\n"
+      << "  plus the same along v, times half a grid step: no point of the patch is farther than that from a\n"
+      << "  sample), is below the best so far. (a) and (c) use neither library's answer. The truth is a\n"
+      << "  distance some surface point attains; it misses the exact minimum only if that lies in a basin\n"
+      << "  that neither library, nor Newton from the nearest sample of its patch, reaches.\n"
+      << "- Right: the reported distance is within 1e-9 x size of the truth (so not above it by more; no\n"
+      << "  answer was below it by more), the point at the reported parameters (OCCT: `S(U, V)` by OCCT;\n"
+      << "  patchwork: `F(u, v)`) is within 1e-9 x size of the reported point (OCCT's issue #345), and for\n"
+      << "  patchwork the certified lower bound is at most the truth (+ 1e-9 x size). Wrong: an answer that\n"
+      << "  fails one of these. Missed: no answer (OCCT: no extremum on any patch).\n\n"
+      << "**Curve x surface.** patchwork: `intersect_curve_surface(curve, set)` (the sphere: its 8 rational\n"
+      << "patches). OCCT: `GeomAPI_IntCS(Geom_BezierCurve, surface)` on every patch; hits of different patches\n"
+      << "within 1e-7 in t are merged by this program (a hit on a shared edge, found by both patches: a\n"
+      << "B-rep caller would merge them too); hits of one surface are not merged. Curves run over t in [0, 1].\n\n"
+      << "- Truth, sphere: the real roots in [0, 1] of `|C(t) - c|^2 - r^2`, exactly (Sturm sequences in GMP\n"
+      << "  rationals; the control points are doubles, so rationals), each isolated to 2^-60. Tangent lines:\n"
+      << "  one contact at t = 1/2 plus the exact roots farther than 1e-4 from it. The first 12 touch at the\n"
+      << "  poles and at the patch corners on the equator and are exactly tangent (dyadic numbers); the\n"
+      << "  others are tangent to rounding (the exact line misses or cuts by about 1e-16, roots within\n"
+      << "  about 1e-8 of 1/2), counted as one contact.\n"
+      << "- Truth, teapot: no closed form. The answers of either library that lie within 1e-7 x size of both\n"
+      << "  curve and patch and from which Newton on F(u, v) = C(t) reaches a root (residual 1e-12 x size)\n"
+      << "  within 1e-4 in t; the contact of a tangent line (built at a convex point, K > 0.01, along a\n"
+      << "  principal direction); and a dense check: the curve's polyline (1 piece for lines, 32 for cubics)\n"
+      << "  against the triangles of the 48 x 48 grid of every patch, Newton from every crossing, a root\n"
+      << "  found this way joins the truth (a hit both missed). Crossings no Newton confirms far from every\n"
+      << "  true hit are counted in the notes. A hit that both libraries and the mesh miss is not in the truth.\n"
+      << "- Matching: every answer goes to the nearest true t within 1e-4; the first is right, further ones\n"
+      << "  are reported twice, answers with no true t that near are wrong; true hits no answer reached are\n"
+      << "  missed.\n\n"
+      << "**2D curve x curve.** patchwork: `intersect_curves` (Bezier or rational Bezier). OCCT:\n"
+      << "`Geom2dAPI_InterCurveCurve` on two `Geom2d_BezierCurve`s with its default tolerance 1e-6, points and\n"
+      << "segments from its `Intersector()`. Control points are multiples of 1/64 and weights 1/2 to 2 in\n"
+      << "steps of 1/4, so the inputs are exact rationals.\n\n"
+      << "- Truth: the resultant R(s) = Res_t(X_A(t) w_B(s) - X_B(s) w_A(t), Y_A(t) w_B(s) - Y_B(s) w_A(t)) in\n"
+      << "  GMP rationals (Sylvester determinants at 2 n_A n_B + 1 integers s, interpolated exactly), its\n"
+      << "  distinct real roots in [0, 1] isolated by Sturm sequences to 2^-60, the multiplicity of each from\n"
+      << "  repeated gcds. For each root s the partner t is found in floating point (the least |A(t) - B(s)|\n"
+      << "  over [-1/4, 5/4], sampling then Gauss-Newton); the root is a true point if that distance is below\n"
+      << "  4e-9 and t lies in [0, 1] (a t within 1e-9 of 0 or 1 is decided exactly: A(end) = B(s) in\n"
+      << "  rationals). So the count in s is exact; the t of each point and its being inside [0, 1] are\n"
+      << "  decided in floating point away from the ends. R = 0 identically: the curves overlap (the\n"
+      << "  overlap's interval is known from the construction).\n"
+      << "- Cases: random cubic pairs in [0, 1]^2 (polynomial, and rational); tangent: a cubic and a\n"
+      << "  parabola touching a line, a cubic touching its mirror image (multiplicity 2); inflection: a cubic\n"
+      << "  against its inflection tangent, and y = (2t - 1)^3 against y = c (2s - 1)^3 (multiplicity 3);\n"
+      << "  near-parallel: lines at angles 2^-10 to 2^-34, and a cubic against itself lifted by\n"
+      << "  e (3t - 3/2) (crossing at an angle of about 3e); overlapping: a cubic (x increasing, so without a\n"
+      << "  loop) against its middle half, forward or reversed, or two pieces sharing [3/8, 5/8] of it; end\n"
+      << "  points: end to end, and an end on the other's middle. The hard cases are turned by 90 degrees and\n"
+      << "  moved (exactly).\n"
+      << "- Matching: a point answer goes to the nearest true point within 1e-4 in t and in s; an interval\n"
+      << "  answer (patchwork's overlap, OCCT's segment: where the curves are within its tolerance) matches a\n"
+      << "  true point inside it. Against an overlap, an interval whose ends are within 1e-4 of the\n"
+      << "  overlap's is right, further such intervals are reported twice, points and other intervals are\n"
+      << "  wrong, and without such an interval the overlap is missed.\n\n"
+      << "**Time.** `steady_clock` around each call (a point, a curve against the whole surface, a pair);\n"
+      << "patchwork and OCCT alternate case by case in one process, one thread, Release (-O3). The machine is\n"
+      << "shared with other builds: times and ratios move by some 20% between runs. The speed ratio is\n"
+      << "OCCT's total time over patchwork's for the family (patchwork's queries per second over OCCT's); a\n"
+      << "family with one slow case (see the slowest column) has its ratio set by that case.\n";
+  return out.str();
+}
+
+std::string document(const std::vector<Row>& rows, const std::string& commit, int count, double run_seconds,
+                     const Sizes& sizes) {
   std::ostringstream out;
   out << "# Modeling queries: patchwork against Open CASCADE\n\n"
       << "Written by `scripts/crosscheck-queries` (report/queries_crosscheck.cpp) in one run: the same cases\n"
@@ -517,8 +617,9 @@ std::string document(const std::vector<Row>& rows, const std::string& commit, in
       << "median of one query (one point, one curve against the whole surface, one pair), measured side by side; the\n"
       << "ratio is patchwork's queries per second over OCCT's, from the total times of the family. The error is the\n"
       << "largest of a right answer (distance for closest points, parameter for intersections).\n\n"
-      << "| query | family | cases | true answers | patchwork | OCCT | patchwork us | OCCT us | speed ratio | max error patchwork / OCCT |\n"
-      << "|---|---|---:|---:|---|---|---:|---:|---:|---|\n";
+      << "| query | family | cases | true answers | patchwork | OCCT | patchwork us | OCCT us | speed ratio | slowest "
+         "ms patchwork / OCCT | max error patchwork / OCCT |\n"
+      << "|---|---|---:|---:|---|---|---:|---:|---:|---|---|\n";
   for (const Row& row : rows) {
     const bool twice = row.query != "closest point";
     const double ours = total(row.patchwork_seconds), theirs = total(row.occt_seconds);
@@ -526,13 +627,16 @@ std::string document(const std::vector<Row>& rows, const std::string& commit, in
         << tally_cell(row.patchwork, twice) << " | " << tally_cell(row.occt, twice) << " | "
         << microseconds(median(row.patchwork_seconds)) << " | " << microseconds(median(row.occt_seconds)) << " | "
         << performance::text("%.2f", ours > 0 ? theirs / ours : 0.0) << " | "
+        << performance::text("%.3g", slowest(row.patchwork_seconds) * 1e3) << " / "
+        << performance::text("%.3g", slowest(row.occt_seconds) * 1e3) << " | "
         << performance::text("%.1e", row.patchwork.max_error) << " / " << performance::text("%.1e", row.occt.max_error)
         << " |\n";
   }
-  out << "\nNotes per row (empty rows left out):\n\n";
+  out << "\nNotes per row (rows without notes left out):\n\n";
   for (const Row& row : rows) {
     if (!row.notes.empty()) out << "- " << row.query << ", " << row.family << ": " << row.notes << "\n";
   }
+  out << "\n" << definitions(sizes);
   return out.str();
 }
 
@@ -571,7 +675,8 @@ int run(const Arguments& arguments) {
   const NurbsSurface sphere_nurbs = sphere_surface(sphere);
   const PatchSet sphere_set = nurbs_patch_set(sphere_nurbs);
   std::vector<Handle(Geom_Surface)> teapot_surfaces;
-  for (const BezierPatch3& patch : teapot.patches()) teapot_surfaces.push_back(performance::detail::occt_bezier_surface(patch));
+  for (const BezierPatch3& patch : teapot.patches())
+    teapot_surfaces.push_back(performance::detail::occt_bezier_surface(patch));
   const std::vector<Handle(Geom_Surface)> sphere_surfaces{performance::detail::occt_bspline_surface(sphere_nurbs)};
   const SampledPatches samples = sample_patches(teapot, 48);
 
@@ -588,21 +693,22 @@ int run(const Arguments& arguments) {
                            if (theirs) feet.push_back(*theirs);
                            return distance_truth(teapot, samples, q, feet).distance;
                          }));
-  add(closest_point_rows("sphere", sphere_set, sphere_surfaces, sphere_point_families(sphere, count, 19002),
-                         [&](const Vec3& q, const Foot&, const std::optional<Foot>&) { return sphere_distance(sphere, q); }));
+  add(closest_point_rows(
+      "sphere", sphere_set, sphere_surfaces, sphere_point_families(sphere, count, 19002),
+      [&](const Vec3& q, const Foot&, const std::optional<Foot>&) { return sphere_distance(sphere, q); }));
   add(curve_surface_rows("teapot", teapot, teapot_surfaces, teapot_curve_families(teapot, count, 19003),
                          [&](const CurveCase& c, const std::vector<ReportedHit>& reports, int& unresolved) {
                            const HitTruth truth = teapot_hit_truth(teapot, samples, c, reports);
                            unresolved = truth.unresolved;
                            return truth.t;
                          }));
-  add(curve_surface_rows("sphere", sphere_set, sphere_surfaces, sphere_curve_families(sphere, count, 19004),
-                         [&](const CurveCase& c, const std::vector<ReportedHit>&, int&) {
-                           return sphere_hit_truth(c, sphere);
-                         }));
+  add(curve_surface_rows(
+      "sphere", sphere_set, sphere_surfaces, sphere_curve_families(sphere, count, 19004),
+      [&](const CurveCase& c, const std::vector<ReportedHit>&, int&) { return sphere_hit_truth(c, sphere); }));
   add(planar_rows(curve_pair_families(count, 19005)));
 
-  write_file_atomically(arguments.out, document(rows, arguments.commit, count, seconds_since(start)));
+  write_file_atomically(arguments.out, document(rows, arguments.commit, count, seconds_since(start),
+                                                Sizes{teapot.size(), sphere_set.size()}));
   return 0;
 }
 

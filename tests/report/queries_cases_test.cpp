@@ -78,7 +78,8 @@ TEST(QueriesCrosscheckCases, SphereHitsAreTheQuadraticsRoots) {
     for (const CurveCase& c : f.cases) {
       // |a + t d - c|^2 = r^2: t = (-b -+ sqrt(b^2 - |d|^2 (|a - c|^2 - r^2))) / |d|^2, b = d.(a - c).
       const Vec3 a = c.curve.control_points()[0], d = c.curve.control_points()[1] - a, m = a - sphere.center;
-      const double b = d.dot(m), dd = d.squaredNorm(), disc = b * b - dd * (m.squaredNorm() - sphere.radius * sphere.radius);
+      const double b = d.dot(m), dd = d.squaredNorm(),
+                   disc = b * b - dd * (m.squaredNorm() - sphere.radius * sphere.radius);
       std::vector<double> expected;
       if (disc > 0) {
         for (const double t : {(-b - std::sqrt(disc)) / dd, (-b + std::sqrt(disc)) / dd}) {
@@ -164,7 +165,8 @@ TEST(QueriesCrosscheckCases, RandomPlanarTruthsAreCrossings) {
     for (const CurvePair& pair : f.pairs) {
       const PairTruth truth = pair_truth(pair);
       EXPECT_FALSE(truth.overlap);
-      for (const Vec2& x : truth.points) EXPECT_LE((pair.first.evaluate(x.x()) - pair.second.evaluate(x.y())).norm(), 1e-12);
+      for (const Vec2& x : truth.points)
+        EXPECT_LE((pair.first.evaluate(x.x()) - pair.second.evaluate(x.y())).norm(), 1e-12);
     }
   }
 }
