@@ -360,22 +360,35 @@ namespace {
 // Newton on G(t, u, v) = F(u, v) - C(t) from a start; the converged (t, u, v) if |G| falls below
 // `residual` inside the domains (to 1e-9).
 std::optional<ReportedHit> newton_hit(const PatchSet& set, const BezierCurve3& curve, ReportedHit x, double residual) {
+  // One Newton step on the 3 x 3 system; the new point and its residual |G| before the step.
+  const auto step = [&](ReportedHit& y) {
+    const PartialDerivatives<3> F = detail::patch_derivatives(set, y.patch, y.u, y.v, 1);
+    const Vec3 G = F.at(0, 0) - curve.evaluate(y.t);
+    Eigen::Matrix3d J;
+    J << F.at(1, 0), F.at(0, 1), -derivative(curve, y.t, 1);
+    const Vec3 d = J.colPivHouseholderQr().solve(G);
+    if (d.allFinite()) y.u -= d.x(), y.v -= d.y(), y.t -= d.z();
+    return G.norm();
+  };
   for (int iteration = 0; iteration < 40; ++iteration) {
-    const PartialDerivatives<3> F = detail::patch_derivatives(set, x.patch, x.u, x.v, 1);
-    const Vec3 G = F.at(0, 0) - curve.evaluate(x.t);
-    if (G.norm() <= residual) {
+    ReportedHit next = x;
+    if (step(next) <= residual) {
+      // Converged at x; polish a few steps more while |G| does not grow, so that the root does
+      // not depend (beyond rounding) on which answer Newton started from.
+      for (int polish = 0; polish < 3; ++polish) {
+        ReportedHit further = next;
+        const double before = step(further);
+        if (!(before <= residual)) break;
+        x = next, next = further;
+      }
       const double slack = 1e-9;
       const bool inside =
           x.t >= -slack && x.t <= 1 + slack && x.u >= -slack && x.u <= 1 + slack && x.v >= -slack && x.v <= 1 + slack;
       if (inside) return x;
       return std::nullopt;
     }
-    Eigen::Matrix3d J;
-    J << F.at(1, 0), F.at(0, 1), -derivative(curve, x.t, 1);
-    const Vec3 step = J.colPivHouseholderQr().solve(G);
-    if (!step.allFinite()) return std::nullopt;
-    x.u -= step.x(), x.v -= step.y(), x.t -= step.z();
-    if (std::abs(x.t) > 2 || std::abs(x.u) > 2 || std::abs(x.v) > 2) return std::nullopt;
+    x = next;
+    if (!(std::abs(x.t) <= 2 && std::abs(x.u) <= 2 && std::abs(x.v) <= 2)) return std::nullopt;
   }
   return std::nullopt;
 }
