@@ -417,6 +417,7 @@ std::vector<Row> planar_rows(const std::vector<PairFamily>& families) {
     Row row = new_row("2D curve x curve", family.name, family.pairs.size());
     int flagged = 0, undecided = 0, segments = 0, failures = 0, errors = 0;
     double longest = 0, overlap_end_error = 0;
+    int our_intervals = 0;
     std::vector<std::pair<Handle(Geom2d_Curve), Handle(Geom2d_Curve)>> curves;
     for (const CurvePair& pair : family.pairs) {
       curves.emplace_back(occt_curve(pair.first, pair.rational), occt_curve(pair.second, pair.rational));
@@ -452,6 +453,9 @@ std::vector<Row> planar_rows(const std::vector<PairFamily>& families) {
       }
       row.occt_seconds.push_back(seconds_since(start));
       const Tally a = judge_planar(pair, truth, ours), b = judge_planar(pair, truth, theirs);
+      if (!truth.overlap) {
+        for (const PlanarAnswer& x : ours) our_intervals += x.t_range ? 1 : 0;
+      }
       if (truth.overlap && pair.overlap) {
         for (const PlanarAnswer& x : theirs) {
           if (x.t_range)
@@ -478,6 +482,7 @@ std::vector<Row> planar_rows(const std::vector<PairFamily>& families) {
     std::ostringstream notes;
     if (flagged > 0) notes << "patchwork flags " << flagged << " points tangential. ";
     if (errors > 0) notes << "patchwork threw on " << errors << " pairs. ";
+    if (our_intervals > 0) notes << "patchwork reports " << our_intervals << " overlaps where the truth is a point. ";
     if (segments > 0)
       notes << "OCCT reports " << segments << " segments (the longest " << performance::text("%.2g", longest)
             << " in t). ";
