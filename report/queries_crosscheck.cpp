@@ -679,7 +679,19 @@ std::string definitions(const Sizes& sizes) {
       << "patchwork and OCCT alternate case by case in one process, one thread, Release (-O3). The machine is\n"
       << "shared with other builds: times and ratios move by some 20% between runs. The speed ratio is\n"
       << "OCCT's total time over patchwork's for the family (patchwork's queries per second over OCCT's); a\n"
-      << "family with one slow case (see the slowest column) has its ratio set by that case.\n";
+      << "family with one slow case (see the slowest column) has its ratio set by that case.\n\n"
+      << "**Limits.** The teapot's truths are not proofs: for closest points a minimum in a basin that no\n"
+      << "start reaches would be missed by the truth too; for curves a hit that both libraries and the\n"
+      << "48 x 48 mesh miss (two hits closer than the mesh resolves, a tangent contact the mesh does not\n"
+      << "cross) is not in the truth, so there \"right\" means agreement with verified hits. In the plane the\n"
+      << "count of roots in s is exact, but each root's t comes from floating point (roots whose t lies\n"
+      << "within 1e-9 of 0 or 1 are decided exactly or reported as undecided in the notes). The matching\n"
+      << "tolerance of 1e-4 in the parameters is generous (tangent contacts are known to about 1e-8,\n"
+      << "inflection contacts to about 1e-5); the error column shows how close the right answers came.\n"
+      << "OCCT answers within its tolerance (1e-6 for planar curves): its points along near-parallel lines\n"
+      << "lie within that tolerance of both curves but are not crossings, so they count as wrong, while its\n"
+      << "segments count as right when they contain the true point. Random tangent lines to the sphere are\n"
+      << "tangent only to rounding and count as one contact by definition.\n";
   return out.str();
 }
 
