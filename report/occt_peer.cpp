@@ -27,6 +27,7 @@
 #include <utility>
 
 #include "core/errors.h"
+#include "report/occt_geometry.h"
 
 namespace patchwork::performance {
 namespace {
@@ -63,17 +64,7 @@ TopoDS_Face make_face(const Handle(Geom_Surface) & surface) {
   return maker.Face();
 }
 
-// Pole (i+1, j+1) = P_ij: Geom_BezierSurface's first pole index runs along U, so (U, V) = (u, v).
-TopoDS_Face make_face(const BezierPatch3& patch) {
-  TColgp_Array2OfPnt poles(1, patch.degree_u() + 1, 1, patch.degree_v() + 1);
-  for (int j = 0; j <= patch.degree_v(); ++j) {
-    for (int i = 0; i <= patch.degree_u(); ++i) {
-      const Vec3& P = patch.control_point(i, j);
-      poles.SetValue(i + 1, j + 1, gp_Pnt(P.x(), P.y(), P.z()));
-    }
-  }
-  return make_face(new Geom_BezierSurface(poles));
-}
+TopoDS_Face make_face(const BezierPatch3& patch) { return make_face(detail::occt_bezier_surface(patch)); }
 
 void check_degrees(const char* function, const NurbsSurface& surface) {
   const int max_degree = Geom_BSplineSurface::MaxDegree();
@@ -105,23 +96,6 @@ std::pair<TColStd_Array1OfReal, TColStd_Array1OfInteger> distinct_knots(const Kn
     result.second.SetValue(k + 1, multiplicities[static_cast<std::size_t>(k)]);
   }
   return result;
-}
-
-// Pole (i+1, j+1) = P_ij with weight w_ij (see the header's file comment).
-Handle(Geom_BSplineSurface) make_bspline_surface(const NurbsSurface& surface) {
-  TColgp_Array2OfPnt poles(1, surface.count_u(), 1, surface.count_v());
-  TColStd_Array2OfReal weights(1, surface.count_u(), 1, surface.count_v());
-  for (int j = 0; j < surface.count_v(); ++j) {
-    for (int i = 0; i < surface.count_u(); ++i) {
-      const Vec3 P = surface.control_point(i, j);
-      poles.SetValue(i + 1, j + 1, gp_Pnt(P.x(), P.y(), P.z()));
-      weights.SetValue(i + 1, j + 1, surface.weight(i, j));
-    }
-  }
-  const auto [u_knots, u_multiplicities] = distinct_knots(surface.knots_u());
-  const auto [v_knots, v_multiplicities] = distinct_knots(surface.knots_v());
-  return new Geom_BSplineSurface(poles, weights, u_knots, v_knots, u_multiplicities, v_multiplicities,
-                                 surface.degree_u(), surface.degree_v());
 }
 
 // The faces in order, unsewn.
@@ -232,8 +206,8 @@ OcctRun timed_enough(const std::function<OcctRun(int repeats)>& tessellate, int 
 OcctRun occt_tessellate(const NurbsSurface& surface, double linear_deflection, double angular_deflection, int repeats) {
   check_meshing_arguments(linear_deflection, angular_deflection, repeats);
   check_degrees("occt_tessellate", surface);
-  return timed_mesh([&] { return make_compound({make_face(make_bspline_surface(surface))}); }, linear_deflection,
-                    angular_deflection, repeats);
+  return timed_mesh([&] { return make_compound({make_face(detail::occt_bspline_surface(surface))}); },
+                    linear_deflection, angular_deflection, repeats);
 }
 
 std::vector<SurfaceJet> occt_evaluate(const NurbsSurface& surface, std::span<const Vec2> parameters) {
@@ -247,7 +221,7 @@ std::vector<SurfaceJet> occt_evaluate(const NurbsSurface& surface, std::span<con
     }
   }
   return guarded("occt_evaluate", [&] {
-    const Handle(Geom_BSplineSurface) bspline = make_bspline_surface(surface);
+    const Handle(Geom_BSplineSurface) bspline = detail::occt_bspline_surface(surface);
     std::vector<SurfaceJet> jets;
     jets.reserve(parameters.size());
     for (const Vec2& uv : parameters) {
@@ -264,6 +238,35 @@ std::vector<SurfaceJet> occt_evaluate(const NurbsSurface& surface, std::span<con
 }
 
 namespace detail {
+
+// Pole (i+1, j+1) = P_ij: Geom_BezierSurface's first pole index runs along U, so (U, V) = (u, v).
+Handle(Geom_BezierSurface) occt_bezier_surface(const BezierPatch3& patch) {
+  TColgp_Array2OfPnt poles(1, patch.degree_u() + 1, 1, patch.degree_v() + 1);
+  for (int j = 0; j <= patch.degree_v(); ++j) {
+    for (int i = 0; i <= patch.degree_u(); ++i) {
+      const Vec3& P = patch.control_point(i, j);
+      poles.SetValue(i + 1, j + 1, gp_Pnt(P.x(), P.y(), P.z()));
+    }
+  }
+  return new Geom_BezierSurface(poles);
+}
+
+// Pole (i+1, j+1) = P_ij with weight w_ij (see the header's file comment).
+Handle(Geom_BSplineSurface) occt_bspline_surface(const NurbsSurface& surface) {
+  TColgp_Array2OfPnt poles(1, surface.count_u(), 1, surface.count_v());
+  TColStd_Array2OfReal weights(1, surface.count_u(), 1, surface.count_v());
+  for (int j = 0; j < surface.count_v(); ++j) {
+    for (int i = 0; i < surface.count_u(); ++i) {
+      const Vec3 P = surface.control_point(i, j);
+      poles.SetValue(i + 1, j + 1, gp_Pnt(P.x(), P.y(), P.z()));
+      weights.SetValue(i + 1, j + 1, surface.weight(i, j));
+    }
+  }
+  const auto [u_knots, u_multiplicities] = distinct_knots(surface.knots_u());
+  const auto [v_knots, v_multiplicities] = distinct_knots(surface.knots_v());
+  return new Geom_BSplineSurface(poles, weights, u_knots, v_knots, u_multiplicities, v_multiplicities,
+                                 surface.degree_u(), surface.degree_v());
+}
 
 OcctParametricMesh occt_parametric_mesh(std::span<const BezierPatch3> patches, double linear_deflection,
                                         double angular_deflection) {
