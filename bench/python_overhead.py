@@ -6,8 +6,9 @@
 Both sides tessellate the same file with the same options (one thread, no measuring: the
 smallest call, where a fixed overhead weighs most), warm, in alternating rounds of 50 runs each
 (C++: bench/tessellate_repeat, timed inside its own process; Python: pw.tessellate timed with
-perf_counter around the call, the result's arrays included as views). Prints the medians and
-their ratio; the machines are shared, so only the ratio of one run counts.
+perf_counter around the call, the result's arrays included as views). Prints the medians, their
+ratio, and the median of the rounds' ratios (each round's two sides run next to each other in
+time, which the load of a shared machine changes less between); only ratios of one run count.
 """
 
 import pathlib
@@ -30,20 +31,27 @@ def main() -> None:
     surface = pw.read_patches(path)
     cpp: list[float] = []
     python: list[float] = []
+    round_ratios: list[float] = []
     for _ in range(rounds):
         out = subprocess.run([str(build / "bench" / "tessellate_repeat"), path, repr(tolerance), str(runs + 1)],
                              check=True, capture_output=True, text=True).stdout
-        cpp += [float(line) for line in out.split()][1:]
+        cpp_round = [float(line) for line in out.split()][1:]
         pw.tessellate(surface, relative_tolerance=tolerance, threads=1, measure=False)  # warm
+        python_round = []
         for _ in range(runs):
             start = time.perf_counter()
             t = pw.tessellate(surface, relative_tolerance=tolerance, threads=1, measure=False)
-            python.append(time.perf_counter() - start)
+            python_round.append(time.perf_counter() - start)
+        cpp += cpp_round
+        python += python_round
+        round_ratios.append(statistics.median(python_round) / statistics.median(cpp_round))
     cpp_median, python_median = statistics.median(cpp), statistics.median(python)
     print(f"{path} at relative tolerance {tolerance:g}: {t.triangle_count} triangles, one thread, no measuring")
     print(f"C++    median {cpp_median * 1e3:.3f} ms over {len(cpp)} runs")
     print(f"Python median {python_median * 1e3:.3f} ms over {len(python)} runs")
-    print(f"Python / C++ = {python_median / cpp_median:.3f} (target <= 1.05)")
+    print(f"Python / C++ = {python_median / cpp_median:.3f} (target <= 1.05); "
+          f"per round (neighbouring in time) median {statistics.median(round_ratios):.3f}, "
+          f"range {min(round_ratios):.3f} to {max(round_ratios):.3f}")
 
 
 if __name__ == "__main__":
