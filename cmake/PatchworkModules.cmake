@@ -73,8 +73,11 @@ function(patchwork_add_library name)
   # The Python module links the static libraries into a shared extension: they are compiled as
   # position-independent code then (only they: the programs and the tests' precompiled header
   # keep their flags).
+  # -fno-semantic-interposition: nothing interposes patchwork's functions, so GCC may inline and
+  # bind calls within a file as it does without -fPIC.
   if(PATCHWORK_PYTHON_MODULE)
     set_target_properties(patchwork_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    target_compile_options(patchwork_${name} PRIVATE -fno-semantic-interposition)
   endif()
   target_include_directories(patchwork_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>)
   # The helper targets hold this build's own flags and stay out of the installed package (a

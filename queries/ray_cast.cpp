@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "core/errors.h"
 #include "queries/patch_evaluation.h"
 #include "queries/query_arguments.h"
+#include "surfaces/rational_bezier_patch.h"
 
 namespace patchwork {
 namespace {
@@ -31,18 +33,24 @@ ScalarNets scalar_nets(const detail::NetPiece& piece, const Vec3& origin, const 
   const std::size_t count = piece.net.size();
   nets.g[0].resize(count);
   nets.g[1].resize(count);
-  double size = 0.0, coordinates = 0.0;
+  double size = 0.0, weighted = 0.0, least_weight = std::numeric_limits<double>::infinity();
+  // w a.(P - o) = a.(wP) - w (a.o): no division by the weights.
+  const double a_origin = a.dot(origin), b_origin = b.dot(origin);
+  const double origin_size = origin.cwiseAbs().maxCoeff();
   for (std::size_t k = 0; k < count; ++k) {
     const Vec4& h = piece.net[k];
-    const Vec3 p = h.head<3>() / h[3];
-    const Vec3 d = p - origin;
-    nets.g[0][k] = h[3] * a.dot(d);
-    nets.g[1][k] = h[3] * b.dot(d);
-    coordinates = std::max(coordinates, p.cwiseAbs().maxCoeff());
-    size = std::max(size, h[3] * (p.cwiseAbs().maxCoeff() + origin.cwiseAbs().maxCoeff()));
+    const Vec3 wp = h.head<3>();
+    nets.g[0][k] = a.dot(wp) - h[3] * a_origin;
+    nets.g[1][k] = b.dot(wp) - h[3] * b_origin;
+    const double wp_size = wp.cwiseAbs().maxCoeff();
+    weighted = std::max(weighted, wp_size);
+    least_weight = std::min(least_weight, h[3]);
+    size = std::max(size, wp_size + h[3] * origin_size);
   }
-  // p - o and the dot product with a unit vector round by a few units of |p| + |o| (max norms,
-  // times sqrt(3) at most); the margin takes 32 of them.
+  // max |P| <= max |wP| / min w, with one division (the margin needs a bound, not the value).
+  const double coordinates = weighted / least_weight;
+  // a.(wP), w (a.o) and their difference round by a few units of w (|P| + |o|) (max norms, times
+  // sqrt(3) at most); the margin takes 32 of them.
   // The control points' rounding (detail::rounding_margin, twice) and that of the products.
   nets.margin = 16.0 * (piece.depth + 4) * (piece.n + piece.m + 2) * detail::unit_roundoff * coordinates +
                 32 * detail::unit_roundoff * size;
@@ -107,11 +115,17 @@ bool certified_unique(const JacobianRanges& range) {
 
 // Bernstein values b and derivatives d of one degree at x.
 void bernstein_with_derivatives(int degree, double x, double* b, double* d) {
+  if (degree > max_degree) {
+    throw InvalidInput(detail::message("ray_cast: a patch of degree ", degree, " (at most ", max_degree, " is supported)"));
+  }
   // The values of degree - 1 first; those of degree and the derivatives follow from them.
-  std::array<double, max_degree + 1> lower{};
+  // Only the first `degree` entries are written and read (no zeroing of the whole array: this
+  // runs for every Newton step of every ray).
+  std::array<double, max_degree + 1> lower;
   lower[0] = 1.0;
   for (int k = 1; k < degree; ++k) {
-    for (int i = k; i > 0; --i)
+    lower[static_cast<std::size_t>(k)] = x * lower[static_cast<std::size_t>(k - 1)];
+    for (int i = k - 1; i > 0; --i)
       lower[static_cast<std::size_t>(i)] = (1 - x) * lower[static_cast<std::size_t>(i)] + x * lower[static_cast<std::size_t>(i - 1)];
     lower[0] *= (1 - x);
   }
@@ -123,9 +137,12 @@ void bernstein_with_derivatives(int degree, double x, double* b, double* d) {
   }
 }
 
+// Values and first derivatives (g, g_s, g_t) of both scalar nets at one (s, t).
+using ScalarValues = std::array<std::array<double, 3>, 2>;
+
 // Values and first derivatives (g, g_s, g_t) of both scalar nets at local (s, t).
-std::array<std::array<double, 3>, 2> scalar_derivatives(const ScalarNets& nets, double s, double t) {
-  std::array<double, max_degree + 1> bu{}, du{}, bv{}, dv{};
+ScalarValues scalar_derivatives(const ScalarNets& nets, double s, double t) {
+  std::array<double, max_degree + 1> bu, du, bv, dv;  // entries 0..degree written below
   bernstein_with_derivatives(nets.n, s, bu.data(), du.data());
   bernstein_with_derivatives(nets.m, t, bv.data(), dv.data());
   std::array<std::array<double, 3>, 2> out{};
@@ -149,8 +166,8 @@ std::array<std::array<double, 3>, 2> scalar_derivatives(const ScalarNets& nets, 
 // Krawczyk's test on the piece X = [0,1]^2 for G = (g_1, g_2), with c = (1/2, 1/2), Y = G'(c)^-1
 // and the Jacobian's ranges J over X: K = c - Y G(c) + (I - Y J)(X - c). Every zero of G in X lies
 // in K, so K and X apart prove there is none, and the piece is dropped without halving.
-bool krawczyk_excludes(const ScalarNets& nets, const JacobianRanges& range) {
-  const auto at_centre = scalar_derivatives(nets, 0.5, 0.5);
+// `at_centre` is scalar_derivatives(nets, 1/2, 1/2).
+bool krawczyk_excludes(const ScalarNets& nets, const JacobianRanges& range, const ScalarValues& at_centre) {
   const double j00 = at_centre[0][1], j01 = at_centre[0][2], j10 = at_centre[1][1], j11 = at_centre[1][2];
   const double det = j00 * j11 - j01 * j10;
   if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
@@ -176,13 +193,13 @@ bool krawczyk_excludes(const ScalarNets& nets, const JacobianRanges& range) {
   return false;
 }
 
-// Newton on (g_1, g_2) = 0 in the piece's local parameters from its centre; the zero if it
-// converges within the piece (widened by a hair, so a hit on the piece's edge is found from
-// either side).
-bool local_newton(const ScalarNets& nets, double& s, double& t) {
+// Newton on (g_1, g_2) = 0 in the piece's local parameters from its centre, where the values
+// are `at_centre`; the zero if it converges within the piece (widened by a hair, so a hit on the
+// piece's edge is found from either side).
+bool local_newton(const ScalarNets& nets, const ScalarValues& at_centre, double& s, double& t) {
   s = t = 0.5;
   for (int iteration = 0; iteration < 20; ++iteration) {
-    const auto g = scalar_derivatives(nets, s, t);
+    const ScalarValues g = iteration == 0 ? at_centre : scalar_derivatives(nets, s, t);
     const double det = g[0][1] * g[1][2] - g[0][2] * g[1][1];
     if (!(std::abs(det) > 0.0)) return false;
     const double ds = (g[0][0] * g[1][2] - g[0][2] * g[1][0]) / det;
@@ -201,27 +218,71 @@ struct Ray {
   double t_min, t_max;
 };
 
-// Newton on the patch itself from (u, v): the plane distances (a.(F-o), b.(F-o)) to zero. The
-// parameters may leave the square by a hair (a hit on an edge); the caller decides.
-void polish(const PatchSet& set, std::uint32_t p, const Ray& ray, double& u, double& v) {
-  for (int iteration = 0; iteration < 3; ++iteration) {
-    const PartialDerivatives<3> d = detail::patch_derivatives(set, p, u, v, 1);
-    const Vec3 r = d.at(0, 0) - ray.origin;
-    const double j00 = ray.a.dot(d.at(1, 0)), j01 = ray.a.dot(d.at(0, 1)), j10 = ray.b.dot(d.at(1, 0)), j11 = ray.b.dot(d.at(0, 1));
-    const double det = j00 * j11 - j01 * j10;
-    if (!(std::abs(det) > 0.0)) return;
-    const double r0 = ray.a.dot(r), r1 = ray.b.dot(r);
-    const double du = (j11 * r0 - j01 * r1) / det, dv = (j00 * r1 - j10 * r0) / det;
-    if (!std::isfinite(du) || !std::isfinite(dv)) return;
-    u = std::clamp(u - du, -1e-6, 1 + 1e-6);
-    v = std::clamp(v - dv, -1e-6, 1 + 1e-6);
-    if (std::abs(du) + std::abs(dv) <= 1e-15) break;
+// F, F_u and F_v at one (u, v).
+struct FirstDerivatives {
+  Vec3 point, du, dv;
+};
+
+// The sums over a net (Point: Vec3 or the homogeneous Vec4) with the Bernstein values and
+// derivatives of both directions: F, F_u, F_v of a polynomial net (or H, H_u, H_v).
+template <class Point>
+std::array<Point, 3> bernstein_sums(const std::vector<Point>& net, int n, int m, double u, double v) {
+  std::array<double, max_degree + 1> bu, du, bv, dv;  // entries 0..degree written below
+  bernstein_with_derivatives(n, u, bu.data(), du.data());
+  bernstein_with_derivatives(m, v, bv.data(), dv.data());
+  std::array<Point, 3> out{Point::Zero(), Point::Zero(), Point::Zero()};
+  for (int j = 0; j <= m; ++j) {
+    Point row = Point::Zero(), row_u = Point::Zero();
+    for (int i = 0; i <= n; ++i) {
+      const Point& c = net[static_cast<std::size_t>(i + (n + 1) * j)];
+      row += bu[static_cast<std::size_t>(i)] * c;
+      row_u += du[static_cast<std::size_t>(i)] * c;
+    }
+    out[0] += bv[static_cast<std::size_t>(j)] * row;
+    out[1] += bv[static_cast<std::size_t>(j)] * row_u;
+    out[2] += dv[static_cast<std::size_t>(j)] * row;
   }
+  return out;
 }
 
-// The distance of patch p's point at (u, v) from the ray.
-double off_ray(const PatchSet& set, std::uint32_t p, const Ray& ray, double u, double v) {
-  const Vec3 r = detail::patch_point(set, p, u, v) - ray.origin;
+// F, F_u, F_v of patch p by Bernstein sums (the sums are backward stable for (u, v) in the
+// square, as de Casteljau is, and allocate nothing: a hit's Newton steps and normal need no more).
+FirstDerivatives first_derivatives(const PatchSet& set, std::uint32_t p, double u, double v) {
+  if (const RationalBezierPatch* rational = set.rational(p)) {
+    const BezierPatch4& h = rational->homogeneous();
+    const auto [hp, hu, hv] = bernstein_sums(h.control_points(), h.degree_u(), h.degree_v(), u, v);
+    const Vec3 point = hp.head<3>() / hp[3];
+    return {point, (hu.head<3>() - hu[3] * point) / hp[3], (hv.head<3>() - hv[3] * point) / hp[3]};
+  }
+  const BezierPatch3& net = set.control_nets()[p];
+  const auto [point, du, dv] = bernstein_sums(net.control_points(), net.degree_u(), net.degree_v(), u, v);
+  return {point, du, dv};
+}
+
+// Newton on the patch itself from (u, v): the plane distances (a.(F-o), b.(F-o)) to zero. The
+// parameters may leave the square by a hair (a hit on an edge); the caller decides. Returns the
+// derivatives at the (u, v) it leaves (a step below 1e-15 is not taken: it is below the
+// parameters' resolution near 1, and the derivatives in hand serve the hit).
+FirstDerivatives polish(const PatchSet& set, std::uint32_t p, const Ray& ray, double& u, double& v) {
+  FirstDerivatives d = first_derivatives(set, p, u, v);
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    const Vec3 r = d.point - ray.origin;
+    const double j00 = ray.a.dot(d.du), j01 = ray.a.dot(d.dv), j10 = ray.b.dot(d.du), j11 = ray.b.dot(d.dv);
+    const double det = j00 * j11 - j01 * j10;
+    if (!(std::abs(det) > 0.0)) break;
+    const double r0 = ray.a.dot(r), r1 = ray.b.dot(r);
+    const double du = (j11 * r0 - j01 * r1) / det, dv = (j00 * r1 - j10 * r0) / det;
+    if (!std::isfinite(du) || !std::isfinite(dv) || std::abs(du) + std::abs(dv) <= 1e-15) break;
+    u = std::clamp(u - du, -1e-6, 1 + 1e-6);
+    v = std::clamp(v - dv, -1e-6, 1 + 1e-6);
+    d = first_derivatives(set, p, u, v);
+  }
+  return d;
+}
+
+// The distance of a point from the ray.
+double off_ray(const Ray& ray, const Vec3& point) {
+  const Vec3 r = point - ray.origin;
   return std::hypot(ray.a.dot(r), ray.b.dot(r));
 }
 
@@ -230,7 +291,9 @@ struct HitCandidate {
   double off_ray;
 };
 
-void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, double v, bool grazing,
+// Adds the hit at (u, v) of patch p, whose derivatives there are `d` (those of the clamped (u, v)
+// are computed here where clamping moves it).
+void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, double v, FirstDerivatives d, bool grazing,
              std::vector<HitCandidate>& hits) {
   // A root outside the square by more than rounding belongs to the neighbour across the edge.
   if (u < -1e-12 || u > 1 + 1e-12 || v < -1e-12 || v > 1 + 1e-12) return;
@@ -238,37 +301,42 @@ void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, dou
   hit.patch = p;
   hit.u = std::clamp(u, 0.0, 1.0);
   hit.v = std::clamp(v, 0.0, 1.0);
+  if (hit.u != u || hit.v != v) d = first_derivatives(set, p, hit.u, hit.v);
   // The point and the normal from one evaluation; the limit normal where F_u x F_v vanishes.
-  const PartialDerivatives<3> d = detail::patch_derivatives(set, p, hit.u, hit.v, 1);
-  hit.point = d.at(0, 0);
+  hit.point = d.point;
   hit.t = ray.direction.dot(hit.point - ray.origin) / ray.direction.squaredNorm();
   if (!(hit.t >= ray.t_min && hit.t <= ray.t_max)) return;
-  const Vec3 cross = d.at(1, 0).cross(d.at(0, 1));
-  const double scale = d.at(1, 0).norm() * d.at(0, 1).norm();
+  // Within about 1e-8 (in the parameters) of a collapsed edge F_u x F_v is rounding, not a
+  // direction (at the edge itself F_u or F_v is a sum of rounding errors): the limit normal
+  // there. The scale is the longer tangent's, squared, which a collapsed edge leaves standing.
+  const Vec3 cross = d.du.cross(d.dv);
+  const double scale = std::max(d.du.squaredNorm(), d.dv.squaredNorm());
   hit.normal = cross.norm() > 1e-8 * scale ? cross.normalized() : detail::patch_unit_normal(set, p, hit.u, hit.v);
   hit.grazing = grazing || std::abs(hit.normal.dot(ray.direction.normalized())) < 1e-6;
-  const Vec3 r = hit.point - ray.origin;
-  hits.push_back({hit, std::hypot(ray.a.dot(r), ray.b.dot(r))});
+  hits.push_back({hit, off_ray(ray, hit.point)});
 }
 
 // The hits in one piece, halving where one hit per piece cannot be certified.
 void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& root, double size, std::vector<HitCandidate>& hits,
                 std::int64_t& examined) {
-  std::vector<detail::NetPiece> stack;
+  // The pieces still to settle, in storage of the thread's that every call reuses.
+  thread_local std::vector<detail::NetPiece> stack;
+  stack.clear();
   // The hits of one piece; false when it must be halved.
   const auto settle = [&](const detail::NetPiece& piece) {
     ++examined;
     const ScalarNets nets = scalar_nets(piece, ray.origin, ray.a, ray.b);
     if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin)) return true;
     const JacobianRanges ranges = jacobian_ranges(nets);
-    if (krawczyk_excludes(nets, ranges)) return true;
+    const ScalarValues at_centre = scalar_derivatives(nets, 0.5, 0.5);
+    if (krawczyk_excludes(nets, ranges, at_centre)) return true;
     if (certified_unique(ranges)) {
       double s = 0.5, t = 0.5;
-      if (local_newton(nets, s, t)) {
+      if (local_newton(nets, at_centre, s, t)) {
         const Vec2 uv = piece.global(s, t);
         double u = uv[0], v = uv[1];
-        polish(set, piece.patch, ray, u, v);
-        add_hit(set, ray, piece.patch, u, v, false, hits);
+        const FirstDerivatives d = polish(set, piece.patch, ray, u, v);
+        add_hit(set, ray, piece.patch, u, v, d, false, hits);
         return true;
       }
       // Newton left the piece: a hit near its edge, or none; halving decides.
@@ -280,10 +348,13 @@ void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& roo
     if (!tiny) return false;
     // Uncertified down to the smallest pieces: a tangent contact if the centre is on the ray.
     double u = 0.5 * (piece.u0 + piece.u1), v = 0.5 * (piece.v0 + piece.v1);
-    polish(set, piece.patch, ray, u, v);
-    u = std::clamp(u, 0.0, 1.0);
-    v = std::clamp(v, 0.0, 1.0);
-    if (off_ray(set, piece.patch, ray, u, v) <= 1e-9 * size) add_hit(set, ray, piece.patch, u, v, true, hits);
+    FirstDerivatives d = polish(set, piece.patch, ray, u, v);
+    if (u != std::clamp(u, 0.0, 1.0) || v != std::clamp(v, 0.0, 1.0)) {
+      u = std::clamp(u, 0.0, 1.0);
+      v = std::clamp(v, 0.0, 1.0);
+      d = first_derivatives(set, piece.patch, u, v);
+    }
+    if (off_ray(ray, d.point) <= 1e-9 * size) add_hit(set, ray, piece.patch, u, v, d, true, hits);
     return true;
   };
   const auto halve = [&](const detail::NetPiece& piece) {
@@ -299,17 +370,39 @@ void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& roo
   }
 }
 
-// The ray's parameter interval inside a box, or an empty one.
-bool slab(const Eigen::AlignedBox3d& box, const Vec3& origin, const Vec3& inverse, double t0, double t1) {
+// What the box tests of one ray share, worked out once per ray.
+struct Slabs {
+  Vec3 origin;
+  Vec3 inverse;
+  double t_min, t_max;
+  // Per axis: the direction has no finite inverse there (0, or so small that 1/d overflows).
+  std::array<bool, 3> parallel;
+  // Per axis: the direction is negative (the box's max face is met first).
+  std::array<bool, 3> negative;
+};
+
+Slabs slabs_of(const Vec3& origin, const Vec3& direction, double t_min, double t_max) {
+  Slabs s{origin, direction.cwiseInverse(), t_min, t_max, {}, {}};
   for (int c = 0; c < 3; ++c) {
-    double near = (box.min()[c] - origin[c]) * inverse[c];
-    double far = (box.max()[c] - origin[c]) * inverse[c];
-    if (near > far) std::swap(near, far);
-    if (std::isnan(near) || std::isnan(far)) {
-      // Direction 0 along this axis with the origin on a face: inside iff within the slab.
-      if (origin[c] < box.min()[c] || origin[c] > box.max()[c]) return false;
+    s.parallel[static_cast<std::size_t>(c)] = !std::isfinite(s.inverse[c]);
+    s.negative[static_cast<std::size_t>(c)] = direction[c] < 0.0;
+  }
+  return s;
+}
+
+// Whether the ray's parameter interval inside a box is not empty. A parallel axis keeps the ray
+// if the origin is within the slab (a NaN from 0 * inf, where the inverse is huge but finite,
+// drops out of std::max and std::min, which keeps the ray: never a missed box).
+bool slab(const Eigen::AlignedBox3d& box, const Slabs& s) {
+  double t0 = s.t_min, t1 = s.t_max;
+  for (int c = 0; c < 3; ++c) {
+    const auto k = static_cast<std::size_t>(c);
+    if (s.parallel[k]) {
+      if (s.origin[c] < box.min()[c] || s.origin[c] > box.max()[c]) return false;
       continue;
     }
+    const double near = ((s.negative[k] ? box.max()[c] : box.min()[c]) - s.origin[c]) * s.inverse[c];
+    const double far = ((s.negative[k] ? box.min()[c] : box.max()[c]) - s.origin[c]) * s.inverse[c];
     t0 = std::max(t0, near);
     t1 = std::min(t1, far);
     if (t0 > t1) return false;
@@ -329,17 +422,22 @@ RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction,
   const Vec3 helper = std::abs(unit.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
   ray.a = unit.cross(helper).normalized();
   ray.b = unit.cross(ray.a).normalized();
-  const Vec3 inverse = direction.cwiseInverse();
+  const Slabs slabs = slabs_of(origin, direction, options.t_min, options.t_max);
   const double size = std::max(bvh.size(), origin.norm() * 1e-3);
 
   RayHits result;
-  std::vector<HitCandidate> found;
-  std::vector<std::uint32_t> stack{0};
+  // Storage of the thread's that every ray reuses (a ray allocates only its result).
+  thread_local std::vector<HitCandidate> found;
+  thread_local std::vector<HitCandidate> kept;
+  thread_local std::vector<std::uint32_t> stack;
+  found.clear();
+  kept.clear();
+  stack.assign(1, 0);
   while (!stack.empty()) {
     const std::uint32_t index = stack.back();
     stack.pop_back();
     const PatchBvh::Node& node = bvh.nodes()[index];
-    if (!slab(node.box, origin, inverse, options.t_min, options.t_max)) continue;
+    if (!slab(node.box, slabs)) continue;
     if (!node.leaf()) {
       stack.push_back(node.second_or_first_piece);
       stack.push_back(index + 1);
@@ -347,7 +445,7 @@ RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction,
     }
     for (std::uint32_t k = 0; k < node.piece_count; ++k) {
       const std::uint32_t piece = node.second_or_first_piece + k;
-      if (!slab(bvh.piece_boxes()[piece], origin, inverse, options.t_min, options.t_max)) continue;
+      if (!slab(bvh.piece_boxes()[piece], slabs)) continue;
       piece_hits(bvh.set(), ray, bvh.pieces()[piece], size, found, result.pieces);
     }
   }
@@ -355,7 +453,6 @@ RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction,
   // the cluster of tiny pieces around a tangent contact; the one nearest the ray stands for it.
   std::sort(found.begin(), found.end(), [](const HitCandidate& x, const HitCandidate& y) { return x.hit.t < y.hit.t; });
   const double same = 1e-9 * size, contact = 1e-4 * size;
-  std::vector<HitCandidate> kept;
   for (const HitCandidate& c : found) {
     if (!kept.empty()) {
       HitCandidate& last = kept.back();
