@@ -118,7 +118,12 @@ class Search {
     // transversal crossings, also nearly parallel: a contact the test cannot decide.
     const bool p_done = (p.flatness <= leaf_flatness_ && p.box.diagonal().norm() <= leaf_size_) || tiny(p, A_);
     const bool q_done = (q.flatness <= leaf_flatness_ && q.box.diagonal().norm() <= leaf_size_) || tiny(q, B_);
-    if (p_done && q_done && (Dim == 3 || tiny(p, A_) || tiny(q, B_) || nearly_parallel(p, q))) {
+    // Both pieces within rounding of one point: nothing finer can be told there. Without this, a
+    // point where A' or B' vanishes (a repeated end control point, a cusp), met at an angle, is
+    // never certified (the Jacobian is singular there) and never parallel, and every piece within
+    // rounding of it pairs with every other down to 44 halvings: millions of pairs.
+    const bool at_rounding = p.box.diagonal().norm() <= eps_ && q.box.diagonal().norm() <= eps_;
+    if (at_rounding || (p_done && q_done && (Dim == 3 || tiny(p, A_) || tiny(q, B_) || nearly_parallel(p, q)))) {
       leaves_.push_back({box, p.t0 + alpha * (p.t1 - p.t0), q.t0 + beta * (q.t1 - q.t0)});
       return true;
     }

@@ -26,7 +26,9 @@
 // pairs are split until both pieces are flat within eps (3D: max(eps, tolerance / 8): the control
 // points within that of the chord) and no larger than max(2^-16 size, tolerance) (size: the
 // diagonal of both curves' box) and, in 2D, their chords are parallel within a sine of 1e-4 (or a piece has been
-// halved 44 times); such pairs are leaves. Leaves whose parameter boxes touch
+// halved 44 times), or both pieces are within eps of a point (where A' or B' vanishes, at a
+// repeated end control point or a cusp, curves met at an angle are neither certified nor
+// parallel: rounding cannot tell more); such pairs are leaves. Leaves whose parameter boxes touch
 // form one contact; it is reported once, at the (t, s) in its boxes where |A(t) - B(s)| is
 // smallest (Gauss-Newton from the best leaf; where that stalls, as it can at a tangency where
 // [A', -B'] has rank 1, golden-section search on t of min_s |A(t) - B(s)|), if that distance is

@@ -213,6 +213,32 @@ TEST(CurveIntersection, DegenerateCurvesGiveContactsWithTightBounds) {
   EXPECT_EQ(corner.points[0].s, 0.0);
 }
 
+// Curves meeting at an end where both derivatives vanish (a repeated end control point), at an
+// angle: the Jacobian is singular there, so no certificate, and the curves are not parallel. Found
+// by random small-integer cubics: the first pair threw NumericalError (more than 2^21 pairs of
+// pieces within rounding of the point), the second took 2.8 s and reported ten points for one.
+TEST(CurveIntersection, SingularEndsMetAtAnAngleAreOneContact) {
+  const auto expect_one_contact_at_the_ends = [](const BezierCurve2& a, const BezierCurve2& b, double t, double s) {
+    CurveIntersections<2> x;
+    ASSERT_NO_THROW(x = intersect_curves(a, b));
+    EXPECT_TRUE(x.overlaps.empty());
+    ASSERT_EQ(x.points.size(), 1u);
+    EXPECT_TRUE(x.points[0].tangential);  // not certified: a singular contact
+    EXPECT_LE(std::abs(x.points[0].t - t), x.points[0].t_bound);
+    EXPECT_LE(std::abs(x.points[0].s - s), x.points[0].s_bound);
+    EXPECT_LT(x.points[0].t_bound, 1e-6);
+    EXPECT_LT(x.points[0].s_bound, 1e-6);
+  };
+  // A folds back along x = 0 to its end (0, -1/4), where A'(1) = 0; B starts there with B'(0) = 0.
+  expect_one_contact_at_the_ends(BezierCurve2({Vec2(0, 0), Vec2(0, 0.25), Vec2(0, -0.25), Vec2(0, -0.25)}),
+                                 BezierCurve2({Vec2(0, -0.25), Vec2(0, -0.25), Vec2(0.25, 0), Vec2(0.25, 0.25)}), 1.0,
+                                 0.0);
+  // Two cusps at a shared start, leaving in different directions (3 (P_2 - P_0)).
+  expect_one_contact_at_the_ends(
+      BezierCurve2({Vec2(0.5, -0.75), Vec2(0.5, -0.75), Vec2(0.25, 0.75), Vec2(0.25, -0.25)}),
+      BezierCurve2({Vec2(0.5, -0.75), Vec2(0.5, -0.75), Vec2(-0.25, 0.75), Vec2(-0.75, 0)}), 0.0, 0.0);
+}
+
 TEST(CurveIntersection, SpaceCurvesWithinTheTolerance) {
   // Two space lines 1e-7 apart at their closest points: within 1e-6 they meet, within 1e-8 not.
   const BezierCurve3 first({Vec3(-1, 0, 0), Vec3(1, 0, 0)});
