@@ -51,6 +51,14 @@ py::array_t<double> weights_of(const Curve& curve) {
 // derivatives over parameter arrays, equality.
 template <class Any>
 void bind_common(py::class_<Any>& c, const char* name) {
+  const auto evaluate = [](const Any& a, const DoubleArray& t) {
+    return std::visit(
+        [&](const auto& k) {
+          constexpr int dim = dimension_of<std::decay_t<decltype(k)>>;
+          return map_parameters<dim>(t, [&](double s) { return k.evaluate(s); });
+        },
+        a.curve);
+  };
   c.def_property_readonly("dimension", &Any::dimension, "2 for a planar curve, 3 for a space curve.")
       .def_property_readonly(
           "degree", [](const Any& a) { return std::visit([](const auto& k) { return k.degree(); }, a.curve); },
@@ -65,28 +73,8 @@ void bind_common(py::class_<Any>& c, const char* name) {
           "control_points",
           [](const Any& a) { return std::visit([](const auto& k) { return control_points_of(k); }, a.curve); },
           "The control points, an (n + 1, dimension) array (a copy).")
-      .def(
-          "evaluate",
-          [](const Any& a, const DoubleArray& t) {
-            return std::visit(
-                [&](const auto& k) {
-                  constexpr int dim = dimension_of<std::decay_t<decltype(k)>>;
-                  return map_parameters<dim>(t, [&](double s) { return k.evaluate(s); });
-                },
-                a.curve);
-          },
-          py::arg("t"), "C(t) for a parameter or an array of them: shape t.shape + (dimension,).")
-      .def(
-          "__call__",
-          [](const Any& a, const DoubleArray& t) {
-            return std::visit(
-                [&](const auto& k) {
-                  constexpr int dim = dimension_of<std::decay_t<decltype(k)>>;
-                  return map_parameters<dim>(t, [&](double s) { return k.evaluate(s); });
-                },
-                a.curve);
-          },
-          py::arg("t"), "Same as evaluate(t).")
+      .def("evaluate", evaluate, py::arg("t"), "C(t) for a parameter or an array of them: shape t.shape + (dimension,).")
+      .def("__call__", evaluate, py::arg("t"), "Same as evaluate(t).")
       .def(
           "derivative",
           [](const Any& a, const DoubleArray& t, int order) {

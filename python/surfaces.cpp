@@ -102,18 +102,11 @@ void check_orders(int ku, int kv) {
 // parameter arrays.
 template <class Surface>
 void bind_surface_common(py::class_<Surface>& c) {
-  c.def(
-       "evaluate",
-       [](const Surface& s, const DoubleArray& u, const DoubleArray& v) {
-         return map_parameter_pairs<3>(u, v, [&](double a, double b) { return s.evaluate(a, b); });
-       },
-       py::arg("u"), py::arg("v"), "F(u, v) for parameters or arrays of them: shape u.shape + (3,).")
-      .def(
-          "__call__",
-          [](const Surface& s, const DoubleArray& u, const DoubleArray& v) {
-            return map_parameter_pairs<3>(u, v, [&](double a, double b) { return s.evaluate(a, b); });
-          },
-          py::arg("u"), py::arg("v"), "Same as evaluate(u, v).")
+  const auto evaluate = [](const Surface& s, const DoubleArray& u, const DoubleArray& v) {
+    return map_parameter_pairs<3>(u, v, [&](double a, double b) { return s.evaluate(a, b); });
+  };
+  c.def("evaluate", evaluate, py::arg("u"), py::arg("v"), "F(u, v) for parameters or arrays of them: shape u.shape + (3,).")
+      .def("__call__", evaluate, py::arg("u"), py::arg("v"), "Same as evaluate(u, v).")
       .def(
           "derivative",
           [](const Surface& s, const DoubleArray& u, const DoubleArray& v, int ku, int kv) {
