@@ -57,6 +57,10 @@ void Tessellator::run(Tessellation& result, bool keep_scratch) {
     result.measured_error = measure(result.mesh);
     result.measure_seconds = seconds_since(measuring);
   }
+  // The vertex order's arrays stay with a result that is passed in again; else they are made
+  // after the rest of the scratch is freed, and freed with the run.
+  VertexOrderScratch one_run_order;
+  VertexOrderScratch* order = keep_scratch ? &result.scratch.get().order : &one_run_order;
   if (!keep_scratch) {
     result.scratch.release();
     outputs_ = nullptr;
@@ -69,9 +73,9 @@ void Tessellator::run(Tessellation& result, bool keep_scratch) {
     std::vector<bool>().swap(corner_owner_);
     std::vector<std::uint32_t>().swap(interior_first_);
   }
-  if (options_.optimize) optimize_vertex_cache(result);
+  if (options_.optimize) optimize_vertex_cache(result, *order, options_.threads);
   // The vertex-fetch order also drops unused vertices (PatchOutput::unused_interior).
-  if (options_.optimize || unused_interior_) optimize_vertex_fetch(result.mesh);
+  if (options_.optimize || unused_interior_) optimize_vertex_fetch(result.mesh, *order, options_.threads);
   if (unused_interior_) {
     const auto& ids = result.mesh.position_ids;
     result.welded_vertices = ids.empty() ? 0 : 1 + *std::max_element(ids.begin(), ids.end());

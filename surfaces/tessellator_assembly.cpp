@@ -48,16 +48,20 @@ void Tessellator::assemble(Tessellation& result) {
   }
   welded_positions_ = &result.scratch.get().welded_positions;
   welded_positions_->assign(interior_base, Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
-  for (const PatchOutput& out : *outputs_) {
+  // Each welded point has one owning patch (number_welded_points: the root of its corner class,
+  // or its edge class's owner), so the patches write their points in parallel.
+  parallel_for(count_, options_.threads, [&](std::size_t p) {
+    const PatchOutput& out = (*outputs_)[p];
     for (std::size_t k = 0; k < out.welded.size(); ++k) {
       if (out.owner[k]) (*welded_positions_)[out.welded[k]] = out.positions[k];
     }
-  }
+  });
   // A welded point takes its owner's position; where the patches' edges differ (PatchSet joins
   // edges whose control points agree within its tolerance) that moves it off this patch's own
   // surface point. Every mesh point of a triangle is an affine combination of its corners, so
   // it moves by at most the largest corner move: |S - L'| <= bound + max |d|.
-  for (PatchOutput& out : *outputs_) {
+  parallel_for(count_, options_.threads, [&](std::size_t p) {
+    PatchOutput& out = (*outputs_)[p];
     double moved = 0.0;
     for (std::size_t k = 0; k < out.welded.size(); ++k) {
       if (out.owner[k]) continue;
@@ -67,7 +71,7 @@ void Tessellator::assemble(Tessellation& result) {
     }
     PATCHWORK_ASSERT(std::isfinite(moved), "every welded point has a position");
     out.weld_gap = moved;
-  }
+  });
   // (1) Boundary vertices, chained per welded point: first_vertex[id] -> next_vertex[...] -> ...
   // At a pole hundreds of points share one welded id, and a vertex can only serve points with
   // its UV, so there the chains are per (id, UV), their heads in a hash table. A vertex is known

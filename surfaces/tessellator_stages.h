@@ -237,6 +237,33 @@ class ChainHeads {
   std::vector<Slot> slots_;
 };
 
+// Arrays of the vertex order (tessellator_vertex_order.cpp) kept between runs into one
+// Tessellation: each reordered array is written into its spare here and then swapped with the
+// mesh's, so a mesh of about the same size from frame to frame allocates (and faults in) nothing.
+struct VertexOrderScratch {
+  // Per worker: a table from mesh vertex to the chunk's own numbering (no_id where unused; reset
+  // after each chunk), and the chunk's arrays.
+  struct Chunk {
+    std::vector<std::uint32_t> local;
+    std::vector<std::uint32_t> global;
+    std::vector<std::uint32_t> indices;
+    std::vector<std::uint32_t> reordered;
+    std::vector<std::uint32_t> first;
+    std::vector<std::uint32_t> by_corner;
+    std::vector<std::uint8_t> taken;
+  };
+  std::vector<Chunk> chunks;
+  std::vector<std::uint32_t> indices;
+  std::vector<std::uint32_t> patches;
+  std::vector<std::uint32_t> remap;
+  std::vector<std::uint32_t> dense;
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;
+  std::vector<Vec2> uvs;
+  std::vector<Vec4> tangents;
+  std::vector<std::uint32_t> position_ids;
+};
+
 // What a run needs besides its output, kept for the next run into the same Tessellation.
 struct TessellatorScratch {
   std::vector<PatchOutput> outputs;
@@ -247,6 +274,7 @@ struct TessellatorScratch {
   ChainHeads heads;
   std::vector<std::uint32_t> next_vertex;
   std::vector<std::uint32_t> dense_position;
+  VertexOrderScratch order;
 };
 
 // Outputs from this size on are written with streaming stores: far beyond the per-core caches
@@ -410,14 +438,12 @@ class Tessellator {
   // interpolant of the mesh positions: the largest measured_piece_error, pieces in parallel.
   double measure(const RenderMesh& mesh) const;
 
-  // Triangles reordered for the vertex cache, in one call over the whole mesh (a call per piece
-  // cost more in set-up than in work once patches are split into 16 pieces), and their patches
-  // along. meshoptimizer keeps each triangle (up to a rotation of its corners): each output
-  // triangle is found among the input triangles with its smallest corner.
-  static void optimize_vertex_cache(Tessellation& result);
+  // Triangles reordered for the vertex cache, and their patches along: one meshoptimizer call
+  // per chunk of vertex_cache_chunk consecutive triangles, chunks in parallel (tessellator_vertex_order.cpp).
+  static void optimize_vertex_cache(Tessellation& result, VertexOrderScratch& scratch, int threads);
 
   // Vertices in order of first use by the (cache-ordered) triangles.
-  static void optimize_vertex_fetch(RenderMesh& mesh);
+  static void optimize_vertex_fetch(RenderMesh& mesh, VertexOrderScratch& scratch, int threads);
 
   const SurfacePieces& pieces_;
   const TessellationOptions& options_;
