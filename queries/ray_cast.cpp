@@ -8,6 +8,7 @@
 #include "core/errors.h"
 #include "queries/patch_evaluation.h"
 #include "queries/query_arguments.h"
+#include "queries/wide_bvh.h"
 #include "surfaces/rational_bezier_patch.h"
 
 namespace patchwork {
@@ -410,6 +411,25 @@ bool slab(const Eigen::AlignedBox3d& box, const Slabs& s) {
   return true;
 }
 
+// Appends the pieces whose double boxes the ray reaches (the binary tree's walk).
+void double_box_pieces(const PatchBvh& bvh, const Slabs& slabs, std::vector<std::uint32_t>& pieces) {
+  thread_local std::vector<std::uint32_t> stack;
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const std::uint32_t index = stack.back();
+    stack.pop_back();
+    const PatchBvh::Node& node = bvh.nodes()[index];
+    if (!slab(node.box, slabs)) continue;
+    if (!node.leaf()) {
+      stack.push_back(node.second_or_first_piece);
+      stack.push_back(index + 1);
+      continue;
+    }
+    for (std::uint32_t k = 0; k < node.piece_count; ++k)
+      if (slab(bvh.piece_boxes()[node.second_or_first_piece + k], slabs)) pieces.push_back(node.second_or_first_piece + k);
+  }
+}
+
 }  // namespace
 
 RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction, const RayOptions& options) {
@@ -422,33 +442,20 @@ RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction,
   const Vec3 helper = std::abs(unit.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
   ray.a = unit.cross(helper).normalized();
   ray.b = unit.cross(ray.a).normalized();
-  const Slabs slabs = slabs_of(origin, direction, options.t_min, options.t_max);
   const double size = std::max(bvh.size(), origin.norm() * 1e-3);
 
   RayHits result;
   // Storage of the thread's that every ray reuses (a ray allocates only its result).
   thread_local std::vector<HitCandidate> found;
   thread_local std::vector<HitCandidate> kept;
-  thread_local std::vector<std::uint32_t> stack;
+  thread_local std::vector<std::uint32_t> candidates;
   found.clear();
   kept.clear();
-  stack.assign(1, 0);
-  while (!stack.empty()) {
-    const std::uint32_t index = stack.back();
-    stack.pop_back();
-    const PatchBvh::Node& node = bvh.nodes()[index];
-    if (!slab(node.box, slabs)) continue;
-    if (!node.leaf()) {
-      stack.push_back(node.second_or_first_piece);
-      stack.push_back(index + 1);
-      continue;
-    }
-    for (std::uint32_t k = 0; k < node.piece_count; ++k) {
-      const std::uint32_t piece = node.second_or_first_piece + k;
-      if (!slab(bvh.piece_boxes()[piece], slabs)) continue;
-      piece_hits(bvh.set(), ray, bvh.pieces()[piece], size, found, result.pieces);
-    }
-  }
+  candidates.clear();
+  // The float boxes four at a time; the double boxes for a ray too far out for their pad.
+  if (!bvh.wide().reaches(origin, direction, options.t_min, options.t_max, candidates))
+    double_box_pieces(bvh, slabs_of(origin, direction, options.t_min, options.t_max), candidates);
+  for (const std::uint32_t piece : candidates) piece_hits(bvh.set(), ray, bvh.pieces()[piece], size, found, result.pieces);
   // One hit per point: the same point found from two pieces or two patches (a shared edge), and
   // the cluster of tiny pieces around a tangent contact; the one nearest the ray stands for it.
   std::sort(found.begin(), found.end(), [](const HitCandidate& x, const HitCandidate& y) { return x.hit.t < y.hit.t; });
