@@ -234,6 +234,18 @@ bool slab(const Eigen::AlignedBox3d& box, const Slabs& s) {
   return true;
 }
 
+// Asks for the cache lines of [data, data + bytes) ahead of their use (a hint; nothing on
+// compilers without the builtin).
+void prefetch(const void* data, std::size_t bytes) {
+#if defined(__GNUC__)
+  const char* const begin = static_cast<const char*>(data);
+  for (std::size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(begin + offset);
+#else
+  (void)data;
+  (void)bytes;
+#endif
+}
+
 // Appends the pieces whose double boxes the ray reaches (the binary tree's walk).
 void double_box_pieces(const PatchBvh& bvh, const Slabs& slabs, std::vector<std::uint32_t>& pieces) {
   thread_local std::vector<std::uint32_t> stack;
@@ -278,7 +290,16 @@ RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction,
   // The float boxes four at a time; the double boxes for a ray too far out for their pad.
   if (!bvh.wide().reaches(origin, direction, options.t_min, options.t_max, candidates))
     double_box_pieces(bvh, slabs_of(origin, direction, options.t_min, options.t_max), candidates);
-  for (const std::uint32_t piece : candidates) piece_hits(bvh.set(), ray, bvh.pieces()[piece], size, found, result.pieces);
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    // The pieces are scattered in memory (each net its own allocation) and most rays meet few
+    // twice: fetch the next piece's net and the one after's header while this one is settled.
+    if (k + 2 < candidates.size()) prefetch(&bvh.pieces()[candidates[k + 2]], sizeof(detail::NetPiece));
+    if (k + 1 < candidates.size()) {
+      const std::vector<Vec4>& net = bvh.pieces()[candidates[k + 1]].net;
+      prefetch(net.data(), net.size() * sizeof(Vec4));
+    }
+    piece_hits(bvh.set(), ray, bvh.pieces()[candidates[k]], size, found, result.pieces);
+  }
   // One hit per point: the same point found from two pieces or two patches (a shared edge), and
   // the cluster of tiny pieces around a tangent contact; the one nearest the ray stands for it.
   std::sort(found.begin(), found.end(), [](const HitCandidate& x, const HitCandidate& y) { return x.hit.t < y.hit.t; });
