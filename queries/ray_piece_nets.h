@@ -221,6 +221,7 @@ bool krawczyk_excludes(const Nets& nets, const JacobianRanges& range, const Scal
 // piece's edge is found from either side).
 template <class Nets>
 bool local_newton(const Nets& nets, const ScalarValues& at_centre, double& s, double& t) {
+  const double hair = 1e-9;
   s = t = 0.5;
   for (int iteration = 0; iteration < 20; ++iteration) {
     const ScalarValues g = iteration == 0 ? at_centre : scalar_derivatives(nets, s, t);
@@ -231,9 +232,13 @@ bool local_newton(const Nets& nets, const ScalarValues& at_centre, double& s, do
     s -= ds;
     t -= dt;
     if (!(s > -0.25 && s < 1.25 && t > -0.25 && t < 1.25)) return false;
-    if (std::abs(ds) + std::abs(dt) <= 1e-13) break;
+    const double step = std::abs(ds) + std::abs(dt);
+    if (step <= 1e-13) break;
+    // Converging (quadratically: what is left is well below the step) to a point outside the
+    // piece by more than twice the step: no need to finish; false only means halving.
+    const double outside = std::max({-s, s - 1, -t, t - 1});
+    if (iteration > 0 && outside > 2 * step + hair) return false;
   }
-  const double hair = 1e-9;
   return s >= -hair && s <= 1 + hair && t >= -hair && t <= 1 + hair;
 }
 
