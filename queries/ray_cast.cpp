@@ -145,7 +145,7 @@ bool settle_uncertified(const PatchSet& set, const Ray& ray, const detail::NetPi
 template <class Nets>
 bool settle_piece(const PatchSet& set, const Ray& ray, const detail::NetPiece& piece, double size, const Nets& nets,
                   std::vector<HitCandidate>& hits) {
-  if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin)) return true;
+  if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin) || hull_misses_origin(nets)) return true;
   const JacobianRanges ranges = jacobian_ranges(nets);
   const ScalarValues at_centre = scalar_derivatives(nets, 0.5, 0.5);
   if (krawczyk_excludes(nets, ranges, at_centre)) return true;

@@ -84,6 +84,47 @@ bool one_sign(const Coefficients& g, double margin) {
   return all_positive || all_negative;
 }
 
+// The piece misses the ray where its points (g_1, g_2)_k lie in an open half-plane through the
+// origin (its projection along the ray misses the ray's point: the Bezier-clipping picture):
+// then alpha g_1 + beta g_2, which vanishes wherever both do, has coefficients all beyond rounding
+// on one side. (alpha, beta) is the bisector of the narrowest cone about the origin that holds the
+// points, built in one pass; only the final test on alpha g_1 + beta g_2 decides, so the cone's
+// own rounding cannot drop a piece that holds a zero. Catches pieces whose hull misses the ray
+// obliquely, which one_sign (alpha, beta = axes) does not.
+template <class Nets>
+bool hull_misses_origin(const Nets& nets) {
+  const auto& g1 = nets.g[0];
+  const auto& g2 = nets.g[1];
+  const std::size_t count = g1.size();
+  const auto cross = [](double ax, double ay, double bx, double by) { return ax * by - ay * bx; };
+  // The cone from (lx, ly) counterclockwise to (hx, hy), narrower than pi.
+  double lx = g1[0], ly = g2[0], hx = lx, hy = ly, largest = 0.0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double px = g1[k], py = g2[k];
+    largest = std::max({largest, std::abs(px), std::abs(py)});
+    if (cross(lx, ly, px, py) >= 0 && cross(px, py, hx, hy) >= 0) continue;
+    if (cross(hx, hy, px, py) > 0 && cross(lx, ly, px, py) > 0) {
+      hx = px, hy = py;
+    } else if (cross(px, py, lx, ly) > 0 && cross(px, py, hx, hy) > 0) {
+      lx = px, ly = py;
+    } else {
+      return false;
+    }
+  }
+  const double low_norm = std::hypot(lx, ly), high_norm = std::hypot(hx, hy);
+  double alpha = lx * high_norm + hx * low_norm, beta = ly * high_norm + hy * low_norm;
+  const double scale = std::max(std::abs(alpha), std::abs(beta));
+  if (!(scale > 0.0) || !std::isfinite(scale)) return false;
+  alpha /= scale;
+  beta /= scale;
+  // Each coefficient is within the margin of its exact value; the combination's two products and
+  // sum round by at most 3 units of |alpha| |g_1| + |beta| |g_2| <= (|alpha| + |beta|) largest.
+  const double bound = (std::abs(alpha) + std::abs(beta)) * (nets.margin + 4 * unit_roundoff * largest);
+  for (std::size_t k = 0; k < count; ++k)
+    if (!(alpha * g1[k] + beta * g2[k] > bound)) return false;
+  return true;
+}
+
 struct Interval {
   double low, high;
 };
