@@ -47,15 +47,22 @@ std::array<NetPiece, 2> cut(const NetPiece& piece, int dir, double s) {
 std::array<NetPiece, 2> halves(const NetPiece& piece, int dir) { return cut(piece, dir, 0.5); }
 
 int longer_direction(const NetPiece& piece) {
+  // The points dehomogenised once (each is in two polygons); up to 32 x 32 on the stack.
+  constexpr std::size_t most = 32 * 32;
+  std::array<Vec3, most> stored;
+  std::vector<Vec3> large;
+  Vec3* points = piece.net.size() <= most ? stored.data() : (large.resize(piece.net.size()), large.data());
+  for (std::size_t k = 0; k < piece.net.size(); ++k) points[k] = piece.net[k].head<3>() / piece.net[k][3];
+  const auto at = [&](int i, int j) -> const Vec3& { return points[static_cast<std::size_t>(i + (piece.n + 1) * j)]; };
   double along_u = 0.0, along_v = 0.0;
   for (int j = 0; j <= piece.m; ++j) {
     double length = 0.0;
-    for (int i = 0; i < piece.n; ++i) length += (piece.point(i + 1, j) - piece.point(i, j)).norm();
+    for (int i = 0; i < piece.n; ++i) length += (at(i + 1, j) - at(i, j)).norm();
     along_u = std::max(along_u, length);
   }
   for (int i = 0; i <= piece.n; ++i) {
     double length = 0.0;
-    for (int j = 0; j < piece.m; ++j) length += (piece.point(i, j + 1) - piece.point(i, j)).norm();
+    for (int j = 0; j < piece.m; ++j) length += (at(i, j + 1) - at(i, j)).norm();
     along_v = std::max(along_v, length);
   }
   return along_u >= along_v ? 0 : 1;
@@ -109,20 +116,30 @@ std::vector<NetPiece> split_pieces(const NetPiece& piece, int k) {
   return pieces;
 }
 
-double rounding_margin(const NetPiece& piece) {
-  double size = 0.0;
-  for (int j = 0; j <= piece.m; ++j)
-    for (int i = 0; i <= piece.n; ++i) size = std::max(size, piece.point(i, j).cwiseAbs().maxCoeff());
+namespace {
+
+// The margin for control points whose largest coordinate (in absolute value) is `size`.
+double margin_for(const NetPiece& piece, double size) {
   // Each halving adds at most (degree) roundings of a convex combination, each of relative size
   // u; the weights' division and the frame projections add a few more.
   return 8.0 * (piece.depth + 4) * (piece.n + piece.m + 2) * unit_roundoff * size;
 }
 
+}  // namespace
+
+double rounding_margin(const NetPiece& piece) {
+  double size = 0.0;
+  for (int j = 0; j <= piece.m; ++j)
+    for (int i = 0; i <= piece.n; ++i) size = std::max(size, piece.point(i, j).cwiseAbs().maxCoeff());
+  return margin_for(piece, size);
+}
+
 Eigen::AlignedBox3d control_box(const NetPiece& piece) {
+  // The box and the margin's size from one pass over the points.
   Eigen::AlignedBox3d box;
   for (int j = 0; j <= piece.m; ++j)
     for (int i = 0; i <= piece.n; ++i) box.extend(piece.point(i, j));
-  const double margin = rounding_margin(piece);
+  const double margin = margin_for(piece, box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff());
   box.min().array() -= margin;
   box.max().array() += margin;
   return box;

@@ -4,6 +4,7 @@
 
 #include "core/errors.h"
 #include "core/parallel.h"
+#include "queries/wide_bvh.h"
 
 namespace patchwork {
 
@@ -28,6 +29,7 @@ PatchBvh::PatchBvh(const PatchSet& set, int pieces_per_side) : set_(&set) {
   pieces_.reserve(pieces.size());
   boxes_.reserve(pieces.size());
   build(order, pieces, boxes, 0, order.size(), 1);
+  wide_ = std::make_shared<const detail::WideBvh>(*this);
 }
 
 std::uint32_t PatchBvh::build(std::vector<std::uint32_t>& order, std::vector<detail::NetPiece>& source_pieces,

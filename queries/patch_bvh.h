@@ -7,9 +7,10 @@
 // built top down, splitting the pieces at the median of their box centres along the longest
 // axis of those centres, down to leaves of at most two pieces; every node's box is the union of
 // its pieces' boxes. Nodes are stored depth first: an inner node's first child follows it, the
-// second is at `second`.
+// second is at `second`. Rays walk a 4-wide float-box tree made from it (queries/wide_bvh.h).
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -18,6 +19,10 @@
 #include "surfaces/patch_set.h"
 
 namespace patchwork {
+
+namespace detail {
+class WideBvh;
+}
 
 class PatchBvh {
  public:
@@ -47,6 +52,8 @@ class PatchBvh {
   double size() const noexcept { return nodes_.front().box.diagonal().norm(); }
   /// The depth of the tree (1 for a single leaf).
   int depth() const noexcept { return depth_; }
+  /// The same tree 4-wide with float boxes, for rays.
+  const detail::WideBvh& wide() const noexcept { return *wide_; }
 
  private:
   // Builds the subtree of order[begin, end) (indices into the pieces and boxes in patch order),
@@ -59,6 +66,8 @@ class PatchBvh {
   std::vector<Eigen::AlignedBox3d> boxes_;
   std::vector<Node> nodes_;
   int depth_ = 0;
+  // Shared by copies (it holds no pointer to this object).
+  std::shared_ptr<const detail::WideBvh> wide_;
 };
 
 }  // namespace patchwork

@@ -8,210 +8,14 @@
 #include "core/errors.h"
 #include "queries/patch_evaluation.h"
 #include "queries/query_arguments.h"
+#include "queries/ray_piece_nets.h"
+#include "queries/wide_bvh.h"
 #include "surfaces/rational_bezier_patch.h"
 
 namespace patchwork {
 namespace {
 
-constexpr int max_degree = 31;
-
-// The two scalar nets w_ij a.(P_ij - o), w_ij b.(P_ij - o) of a piece.
-struct ScalarNets {
-  int n = 0, m = 0;
-  // The coefficients, in a buffer of the thread's that every piece reuses (no allocation).
-  std::array<std::vector<double>, 2>& g;
-  double margin = 0.0;
-};
-
-std::array<std::vector<double>, 2>& scratch_coefficients() {
-  thread_local std::array<std::vector<double>, 2> buffers;
-  return buffers;
-}
-
-ScalarNets scalar_nets(const detail::NetPiece& piece, const Vec3& origin, const Vec3& a, const Vec3& b) {
-  ScalarNets nets{piece.n, piece.m, scratch_coefficients(), 0.0};
-  const std::size_t count = piece.net.size();
-  nets.g[0].resize(count);
-  nets.g[1].resize(count);
-  double size = 0.0, weighted = 0.0, least_weight = std::numeric_limits<double>::infinity();
-  // w a.(P - o) = a.(wP) - w (a.o): no division by the weights.
-  const double a_origin = a.dot(origin), b_origin = b.dot(origin);
-  const double origin_size = origin.cwiseAbs().maxCoeff();
-  for (std::size_t k = 0; k < count; ++k) {
-    const Vec4& h = piece.net[k];
-    const Vec3 wp = h.head<3>();
-    nets.g[0][k] = a.dot(wp) - h[3] * a_origin;
-    nets.g[1][k] = b.dot(wp) - h[3] * b_origin;
-    const double wp_size = wp.cwiseAbs().maxCoeff();
-    weighted = std::max(weighted, wp_size);
-    least_weight = std::min(least_weight, h[3]);
-    size = std::max(size, wp_size + h[3] * origin_size);
-  }
-  // max |P| <= max |wP| / min w, with one division (the margin needs a bound, not the value).
-  const double coordinates = weighted / least_weight;
-  // a.(wP), w (a.o) and their difference round by a few units of w (|P| + |o|) (max norms, times
-  // sqrt(3) at most); the margin takes 32 of them.
-  // The control points' rounding (detail::rounding_margin, twice) and that of the products.
-  nets.margin = 16.0 * (piece.depth + 4) * (piece.n + piece.m + 2) * detail::unit_roundoff * coordinates +
-                32 * detail::unit_roundoff * size;
-  return nets;
-}
-
-// All coefficients beyond the margin on one side: no zero of that function in the piece.
-bool one_sign(const std::vector<double>& g, double margin) {
-  bool all_positive = true, all_negative = true;
-  for (double c : g) {
-    all_positive = all_positive && c > margin;
-    all_negative = all_negative && c < -margin;
-  }
-  return all_positive || all_negative;
-}
-
-struct Interval {
-  double low, high;
-};
-
-Interval operator*(const Interval& x, const Interval& y) {
-  const double p[4] = {x.low * y.low, x.low * y.high, x.high * y.low, x.high * y.high};
-  return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
-}
-
-// The range of d g / ds (dir 0) or d g / dt over the piece: the differenced net's extremes.
-Interval derivative_range(const std::vector<double>& g, int n, int m, int dir) {
-  Interval r{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  const int degree = dir == 0 ? n : m;
-  if (degree == 0) return {0.0, 0.0};
-  for (int j = 0; j <= m - (dir == 1); ++j) {
-    for (int i = 0; i <= n - (dir == 0); ++i) {
-      const std::size_t k = static_cast<std::size_t>(i + (n + 1) * j);
-      const std::size_t next = dir == 0 ? k + 1 : k + static_cast<std::size_t>(n + 1);
-      const double c = degree * (g[next] - g[k]);
-      r.low = std::min(r.low, c);
-      r.high = std::max(r.high, c);
-    }
-  }
-  return r;
-}
-
-// The ranges of the Jacobian of (g_1, g_2) over the piece: [f][d] is d g_f / d(s or t).
-using JacobianRanges = std::array<std::array<Interval, 2>, 2>;
-
-JacobianRanges jacobian_ranges(const ScalarNets& nets) {
-  JacobianRanges r;
-  for (int f = 0; f < 2; ++f)
-    for (int d = 0; d < 2; ++d)
-      r[static_cast<std::size_t>(f)][static_cast<std::size_t>(d)] = derivative_range(nets.g[static_cast<std::size_t>(f)], nets.n, nets.m, d);
-  return r;
-}
-
-// The Jacobian of (g_1, g_2) is regular wherever the differenced nets allow: at most one zero.
-bool certified_unique(const JacobianRanges& range) {
-  const Interval g1s = range[0][0], g1t = range[0][1], g2s = range[1][0], g2t = range[1][1];
-  const Interval p = g1s * g2t, q = g1t * g2s;
-  const double low = p.low - q.high, high = p.high - q.low;
-  const double slack = 8 * detail::unit_roundoff * (std::abs(p.low) + std::abs(p.high) + std::abs(q.low) + std::abs(q.high));
-  return low > slack || high < -slack;
-}
-
-// Bernstein values b and derivatives d of one degree at x.
-void bernstein_with_derivatives(int degree, double x, double* b, double* d) {
-  if (degree > max_degree) {
-    throw InvalidInput(detail::message("ray_cast: a patch of degree ", degree, " (at most ", max_degree, " is supported)"));
-  }
-  // The values of degree - 1 first; those of degree and the derivatives follow from them.
-  // Only the first `degree` entries are written and read (no zeroing of the whole array: this
-  // runs for every Newton step of every ray).
-  std::array<double, max_degree + 1> lower;
-  lower[0] = 1.0;
-  for (int k = 1; k < degree; ++k) {
-    lower[static_cast<std::size_t>(k)] = x * lower[static_cast<std::size_t>(k - 1)];
-    for (int i = k - 1; i > 0; --i)
-      lower[static_cast<std::size_t>(i)] = (1 - x) * lower[static_cast<std::size_t>(i)] + x * lower[static_cast<std::size_t>(i - 1)];
-    lower[0] *= (1 - x);
-  }
-  for (int i = 0; i <= degree; ++i) {
-    const double left = i > 0 ? lower[static_cast<std::size_t>(i - 1)] : 0.0;
-    const double right = i < degree ? lower[static_cast<std::size_t>(i)] : 0.0;
-    b[i] = degree == 0 ? 1.0 : (1 - x) * right + x * left;
-    d[i] = degree * (left - right);
-  }
-}
-
-// Values and first derivatives (g, g_s, g_t) of both scalar nets at one (s, t).
-using ScalarValues = std::array<std::array<double, 3>, 2>;
-
-// Values and first derivatives (g, g_s, g_t) of both scalar nets at local (s, t).
-ScalarValues scalar_derivatives(const ScalarNets& nets, double s, double t) {
-  std::array<double, max_degree + 1> bu, du, bv, dv;  // entries 0..degree written below
-  bernstein_with_derivatives(nets.n, s, bu.data(), du.data());
-  bernstein_with_derivatives(nets.m, t, bv.data(), dv.data());
-  std::array<std::array<double, 3>, 2> out{};
-  for (std::size_t f = 0; f < 2; ++f) {
-    const std::vector<double>& g = nets.g[f];
-    for (int j = 0; j <= nets.m; ++j) {
-      double row = 0.0, row_s = 0.0;
-      for (int i = 0; i <= nets.n; ++i) {
-        const double c = g[static_cast<std::size_t>(i + (nets.n + 1) * j)];
-        row += bu[static_cast<std::size_t>(i)] * c;
-        row_s += du[static_cast<std::size_t>(i)] * c;
-      }
-      out[f][0] += bv[static_cast<std::size_t>(j)] * row;
-      out[f][1] += bv[static_cast<std::size_t>(j)] * row_s;
-      out[f][2] += dv[static_cast<std::size_t>(j)] * row;
-    }
-  }
-  return out;
-}
-
-// Krawczyk's test on the piece X = [0,1]^2 for G = (g_1, g_2), with c = (1/2, 1/2), Y = G'(c)^-1
-// and the Jacobian's ranges J over X: K = c - Y G(c) + (I - Y J)(X - c). Every zero of G in X lies
-// in K, so K and X apart prove there is none, and the piece is dropped without halving.
-// `at_centre` is scalar_derivatives(nets, 1/2, 1/2).
-bool krawczyk_excludes(const ScalarNets& nets, const JacobianRanges& range, const ScalarValues& at_centre) {
-  const double j00 = at_centre[0][1], j01 = at_centre[0][2], j10 = at_centre[1][1], j11 = at_centre[1][2];
-  const double det = j00 * j11 - j01 * j10;
-  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
-  const double y[2][2] = {{j11 / det, -j01 / det}, {-j10 / det, j00 / det}};
-  for (int r = 0; r < 2; ++r) {
-    // Row r of c - Y G(c), and the radius of row r of (I - Y J)(X - c) with X - c = [-1/2, 1/2]^2.
-    const double centre = 0.5 - (y[r][0] * at_centre[0][0] + y[r][1] * at_centre[1][0]);
-    double radius = 0.0, scale = std::abs(centre) + 1.0;
-    for (int c = 0; c < 2; ++c) {
-      Interval entry{r == c ? 1.0 : 0.0, r == c ? 1.0 : 0.0};
-      for (int k = 0; k < 2; ++k) {
-        const Interval product = Interval{y[r][k], y[r][k]} * range[static_cast<std::size_t>(k)][static_cast<std::size_t>(c)];
-        entry.low -= product.high;
-        entry.high -= product.low;
-        scale += std::abs(product.low) + std::abs(product.high);
-      }
-      radius += 0.5 * std::max(std::abs(entry.low), std::abs(entry.high));
-    }
-    // Rounding in G(c), Y and the products, and the nets' own margin carried through Y.
-    const double slack = 64 * detail::unit_roundoff * scale + nets.margin * (std::abs(y[r][0]) + std::abs(y[r][1]));
-    if (centre - radius - slack > 1.0 || centre + radius + slack < 0.0) return true;
-  }
-  return false;
-}
-
-// Newton on (g_1, g_2) = 0 in the piece's local parameters from its centre, where the values
-// are `at_centre`; the zero if it converges within the piece (widened by a hair, so a hit on the
-// piece's edge is found from either side).
-bool local_newton(const ScalarNets& nets, const ScalarValues& at_centre, double& s, double& t) {
-  s = t = 0.5;
-  for (int iteration = 0; iteration < 20; ++iteration) {
-    const ScalarValues g = iteration == 0 ? at_centre : scalar_derivatives(nets, s, t);
-    const double det = g[0][1] * g[1][2] - g[0][2] * g[1][1];
-    if (!(std::abs(det) > 0.0)) return false;
-    const double ds = (g[0][0] * g[1][2] - g[0][2] * g[1][0]) / det;
-    const double dt = (g[0][1] * g[1][0] - g[0][0] * g[1][1]) / det;
-    s -= ds;
-    t -= dt;
-    if (!(s > -0.25 && s < 1.25 && t > -0.25 && t < 1.25)) return false;
-    if (std::abs(ds) + std::abs(dt) <= 1e-13) break;
-  }
-  const double hair = 1e-9;
-  return s >= -hair && s <= 1 + hair && t >= -hair && t <= 1 + hair;
-}
+using namespace detail::ray_nets;
 
 struct Ray {
   Vec3 origin, direction, a, b;
@@ -316,46 +120,66 @@ void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, dou
   hits.push_back({hit, off_ray(ray, hit.point)});
 }
 
+// A piece with no certified answer: false (halve it) unless it is tiny, when its centre moved
+// onto the ray by Newton is a tangent contact if it is on the ray.
+bool settle_uncertified(const PatchSet& set, const Ray& ray, const detail::NetPiece& piece, double size,
+                        std::vector<HitCandidate>& hits) {
+  // Small in space (a wedge at a pole is small long before its parameter range is), or in
+  // both parameters.
+  const bool tiny = detail::control_box(piece).diagonal().norm() <= 1e-7 * size ||
+                    ((piece.u1 - piece.u0) <= 0x1p-30 && (piece.v1 - piece.v0) <= 0x1p-30);
+  if (!tiny) return false;
+  // Uncertified down to the smallest pieces: a tangent contact if the centre is on the ray.
+  double u = 0.5 * (piece.u0 + piece.u1), v = 0.5 * (piece.v0 + piece.v1);
+  FirstDerivatives d = polish(set, piece.patch, ray, u, v);
+  if (u != std::clamp(u, 0.0, 1.0) || v != std::clamp(v, 0.0, 1.0)) {
+    u = std::clamp(u, 0.0, 1.0);
+    v = std::clamp(v, 0.0, 1.0);
+    d = first_derivatives(set, piece.patch, u, v);
+  }
+  if (off_ray(ray, d.point) <= 1e-9 * size) add_hit(set, ray, piece.patch, u, v, d, true, hits);
+  return true;
+}
+
+// The hits of one piece whose scalar nets are `nets`; false when it must be halved.
+template <class Nets>
+bool settle_piece(const PatchSet& set, const Ray& ray, const detail::NetPiece& piece, double size, const Nets& nets,
+                  std::vector<HitCandidate>& hits) {
+  if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin) || hull_misses_origin(nets)) return true;
+  const JacobianRanges ranges = jacobian_ranges(nets);
+  const ScalarValues at_centre = scalar_derivatives(nets, 0.5, 0.5);
+  if (krawczyk_excludes(nets, ranges, at_centre)) return true;
+  if (certified_unique(ranges)) {
+    double s = 0.5, t = 0.5;
+    if (local_newton(nets, at_centre, s, t)) {
+      const Vec2 uv = piece.global(s, t);
+      double u = uv[0], v = uv[1];
+      const FirstDerivatives d = polish(set, piece.patch, ray, u, v);
+      add_hit(set, ray, piece.patch, u, v, d, false, hits);
+      return true;
+    }
+    // Newton left the piece: a hit near its edge, or none; halving decides.
+  }
+  return settle_uncertified(set, ray, piece, size, hits);
+}
+
 // The hits in one piece, halving where one hit per piece cannot be certified.
 void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& root, double size, std::vector<HitCandidate>& hits,
                 std::int64_t& examined) {
   // The pieces still to settle, in storage of the thread's that every call reuses.
   thread_local std::vector<detail::NetPiece> stack;
   stack.clear();
-  // The hits of one piece; false when it must be halved.
+  // The hits of one piece; false when it must be halved. Bicubic nets in fixed-size arrays.
   const auto settle = [&](const detail::NetPiece& piece) {
     ++examined;
-    const ScalarNets nets = scalar_nets(piece, ray.origin, ray.a, ray.b);
-    if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin)) return true;
-    const JacobianRanges ranges = jacobian_ranges(nets);
-    const ScalarValues at_centre = scalar_derivatives(nets, 0.5, 0.5);
-    if (krawczyk_excludes(nets, ranges, at_centre)) return true;
-    if (certified_unique(ranges)) {
-      double s = 0.5, t = 0.5;
-      if (local_newton(nets, at_centre, s, t)) {
-        const Vec2 uv = piece.global(s, t);
-        double u = uv[0], v = uv[1];
-        const FirstDerivatives d = polish(set, piece.patch, ray, u, v);
-        add_hit(set, ray, piece.patch, u, v, d, false, hits);
-        return true;
-      }
-      // Newton left the piece: a hit near its edge, or none; halving decides.
+    if (piece.n == 3 && piece.m == 3) {
+      FixedScalarNets<3, 3> nets;
+      fill_scalar_nets(piece, ray.origin, ray.a, ray.b, nets);
+      return settle_piece(set, ray, piece, size, nets, hits);
     }
-    // Small in space (a wedge at a pole is small long before its parameter range is), or in
-    // both parameters.
-    const bool tiny = detail::control_box(piece).diagonal().norm() <= 1e-7 * size ||
-                      ((piece.u1 - piece.u0) <= 0x1p-30 && (piece.v1 - piece.v0) <= 0x1p-30);
-    if (!tiny) return false;
-    // Uncertified down to the smallest pieces: a tangent contact if the centre is on the ray.
-    double u = 0.5 * (piece.u0 + piece.u1), v = 0.5 * (piece.v0 + piece.v1);
-    FirstDerivatives d = polish(set, piece.patch, ray, u, v);
-    if (u != std::clamp(u, 0.0, 1.0) || v != std::clamp(v, 0.0, 1.0)) {
-      u = std::clamp(u, 0.0, 1.0);
-      v = std::clamp(v, 0.0, 1.0);
-      d = first_derivatives(set, piece.patch, u, v);
-    }
-    if (off_ray(ray, d.point) <= 1e-9 * size) add_hit(set, ray, piece.patch, u, v, d, true, hits);
-    return true;
+    ScalarNets nets{piece.n, piece.m, scratch_coefficients(), 0.0};
+    fill_scalar_nets(piece, ray.origin, ray.a, ray.b, nets);
+    return settle_piece(set, ray, piece, size, nets, hits);
   };
   const auto halve = [&](const detail::NetPiece& piece) {
     int dir = detail::longer_direction(piece);
@@ -410,6 +234,37 @@ bool slab(const Eigen::AlignedBox3d& box, const Slabs& s) {
   return true;
 }
 
+// Asks for the cache lines of [data, data + bytes) ahead of their use (a hint; nothing on
+// compilers without the builtin).
+void prefetch(const void* data, std::size_t bytes) {
+#if defined(__GNUC__)
+  const char* const begin = static_cast<const char*>(data);
+  for (std::size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(begin + offset);
+#else
+  (void)data;
+  (void)bytes;
+#endif
+}
+
+// Appends the pieces whose double boxes the ray reaches (the binary tree's walk).
+void double_box_pieces(const PatchBvh& bvh, const Slabs& slabs, std::vector<std::uint32_t>& pieces) {
+  thread_local std::vector<std::uint32_t> stack;
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const std::uint32_t index = stack.back();
+    stack.pop_back();
+    const PatchBvh::Node& node = bvh.nodes()[index];
+    if (!slab(node.box, slabs)) continue;
+    if (!node.leaf()) {
+      stack.push_back(node.second_or_first_piece);
+      stack.push_back(index + 1);
+      continue;
+    }
+    for (std::uint32_t k = 0; k < node.piece_count; ++k)
+      if (slab(bvh.piece_boxes()[node.second_or_first_piece + k], slabs)) pieces.push_back(node.second_or_first_piece + k);
+  }
+}
+
 }  // namespace
 
 RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction, const RayOptions& options) {
@@ -422,32 +277,28 @@ RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction,
   const Vec3 helper = std::abs(unit.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
   ray.a = unit.cross(helper).normalized();
   ray.b = unit.cross(ray.a).normalized();
-  const Slabs slabs = slabs_of(origin, direction, options.t_min, options.t_max);
   const double size = std::max(bvh.size(), origin.norm() * 1e-3);
 
   RayHits result;
   // Storage of the thread's that every ray reuses (a ray allocates only its result).
   thread_local std::vector<HitCandidate> found;
   thread_local std::vector<HitCandidate> kept;
-  thread_local std::vector<std::uint32_t> stack;
+  thread_local std::vector<std::uint32_t> candidates;
   found.clear();
   kept.clear();
-  stack.assign(1, 0);
-  while (!stack.empty()) {
-    const std::uint32_t index = stack.back();
-    stack.pop_back();
-    const PatchBvh::Node& node = bvh.nodes()[index];
-    if (!slab(node.box, slabs)) continue;
-    if (!node.leaf()) {
-      stack.push_back(node.second_or_first_piece);
-      stack.push_back(index + 1);
-      continue;
+  candidates.clear();
+  // The float boxes four at a time; the double boxes for a ray too far out for their pad.
+  if (!bvh.wide().reaches(origin, direction, options.t_min, options.t_max, candidates))
+    double_box_pieces(bvh, slabs_of(origin, direction, options.t_min, options.t_max), candidates);
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    // The pieces are scattered in memory (each net its own allocation) and most rays meet few
+    // twice: fetch the next piece's net and the one after's header while this one is settled.
+    if (k + 2 < candidates.size()) prefetch(&bvh.pieces()[candidates[k + 2]], sizeof(detail::NetPiece));
+    if (k + 1 < candidates.size()) {
+      const std::vector<Vec4>& net = bvh.pieces()[candidates[k + 1]].net;
+      prefetch(net.data(), net.size() * sizeof(Vec4));
     }
-    for (std::uint32_t k = 0; k < node.piece_count; ++k) {
-      const std::uint32_t piece = node.second_or_first_piece + k;
-      if (!slab(bvh.piece_boxes()[piece], slabs)) continue;
-      piece_hits(bvh.set(), ray, bvh.pieces()[piece], size, found, result.pieces);
-    }
+    piece_hits(bvh.set(), ray, bvh.pieces()[candidates[k]], size, found, result.pieces);
   }
   // One hit per point: the same point found from two pieces or two patches (a shared edge), and
   // the cluster of tiny pieces around a tangent contact; the one nearest the ray stands for it.
