@@ -21,4 +21,15 @@ void reserve_huge(std::vector<T, Allocator>& v, std::size_t n) {
   advise_huge_pages(v.data(), v.capacity() * sizeof(T));
 }
 
+/// v with n elements, its storage kept when it has room, else made anew with reserve_huge (the
+/// old contents are not kept then: for arrays about to be overwritten).
+template <class T, class Allocator>
+void resize_keeping_storage(std::vector<T, Allocator>& v, std::size_t n) {
+  if (v.capacity() < n) {
+    v = {};
+    reserve_huge(v, n);
+  }
+  v.resize(n);
+}
+
 }  // namespace patchwork

@@ -163,13 +163,7 @@ void Tessellator::assemble(Tessellation& result) {
   result.tolerance = tolerance;
   result.measured_error = 0.0;
   RenderMesh& mesh = result.mesh;
-  const auto resize = [](auto& array, std::size_t size) {
-    if (array.capacity() < size) {
-      array = {};
-      reserve_huge(array, size);
-    }
-    array.resize(size);
-  };
+  const auto resize = [](auto& array, std::size_t size) { resize_keeping_storage(array, size); };
   resize(mesh.positions, vertices);
   resize(mesh.normals, vertices);
   resize(mesh.uvs, with_uv ? vertices : 0);

@@ -23,17 +23,6 @@ constexpr std::size_t vertex_cache_chunk = std::size_t{1} << 16;
 // Elements per block of the parallel copies in the vertex-fetch order.
 constexpr std::size_t fetch_block = std::size_t{1} << 16;
 
-// `array` with `size` elements, its storage kept when it has room (else made anew, with huge
-// pages where the system has them).
-template <class Array>
-void fit(Array& array, std::size_t size) {
-  if (array.capacity() < size) {
-    array = {};
-    reserve_huge(array, size);
-  }
-  array.resize(size);
-}
-
 // Triangles [begin, end) of `mesh` in vertex-cache order into `order.indices` (same places),
 // their patches into `order.patches`. The vertices of a chunk that is not the whole mesh are
 // numbered in order of first use, so that meshoptimizer's tables are the chunk's size, not the
@@ -121,8 +110,8 @@ void Tessellator::optimize_vertex_cache(Tessellation& result, VertexOrderScratch
   RenderMesh& mesh = result.mesh;
   const std::size_t triangles = mesh.triangle_count();
   if (triangles == 0) return;
-  fit(order.indices, mesh.indices.size());
-  fit(order.patches, triangles);
+  resize_keeping_storage(order.indices, mesh.indices.size());
+  resize_keeping_storage(order.patches, triangles);
   const std::size_t chunks = (triangles + vertex_cache_chunk - 1) / vertex_cache_chunk;
   const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(thread_count(threads)), chunks);
   order.chunks.resize(std::max(order.chunks.size(), workers));
@@ -143,17 +132,17 @@ void Tessellator::optimize_vertex_cache(Tessellation& result, VertexOrderScratch
 void Tessellator::optimize_vertex_fetch(RenderMesh& mesh, VertexOrderScratch& order, int threads) {
   if (mesh.indices.empty()) return;
   const std::size_t vertices = mesh.vertex_count();
-  fit(order.remap, vertices);
+  resize_keeping_storage(order.remap, vertices);
   const std::size_t used =
       meshopt_optimizeVertexFetchRemap(order.remap.data(), mesh.indices.data(), mesh.indices.size(), vertices);
   const std::vector<std::uint32_t>& remap = order.remap;
   const bool with_uvs = !mesh.uvs.empty();
   const bool with_tangents = !mesh.tangents.empty();
-  fit(order.positions, used);
-  fit(order.normals, used);
-  fit(order.uvs, with_uvs ? used : 0);
-  fit(order.tangents, with_tangents ? used : 0);
-  fit(order.position_ids, used);
+  resize_keeping_storage(order.positions, used);
+  resize_keeping_storage(order.normals, used);
+  resize_keeping_storage(order.uvs, with_uvs ? used : 0);
+  resize_keeping_storage(order.tangents, with_tangents ? used : 0);
+  resize_keeping_storage(order.position_ids, used);
   const auto blocks = [](std::size_t n) { return (n + fetch_block - 1) / fetch_block; };
   parallel_for(blocks(vertices), threads, [&](std::size_t b) {
     const std::size_t end = std::min(vertices, (b + 1) * fetch_block);
