@@ -113,7 +113,17 @@ class Search {
     if constexpr (Dim == 2) {
       if (certify(box)) return true;
     }
-    if (find_overlap(p, q)) return true;
+    switch (find_overlap(p, q)) {
+      case Coincidence::overlap:
+        return true;
+      case Coincidence::local:
+        // Within rounding of each other here but not as far as the curves go: a crossing at an
+        // angle rounding cannot resolve (or a touching), which is a contact.
+        leaves_.push_back({box, p.t0 + alpha * (p.t1 - p.t0), q.t0 + beta * (q.t1 - q.t0)});
+        return true;
+      case Coincidence::none:
+        break;
+    }
     // A leaf: both pieces flat (or split to the end), and in 2D, where Krawczyk's test decides
     // transversal crossings, also nearly parallel: a contact the test cannot decide.
     const bool p_done = (p.flatness <= leaf_flatness_ && p.box.diagonal().norm() <= leaf_size_) || tiny(p, A_);
@@ -233,33 +243,33 @@ class Search {
     return krawczyk<2>(X, m, a - b, evaluation_error_, J, jacobian.inverse(), image);
   }
 
-  // Records an overlap if one piece lies on the other curve.
-  bool find_overlap(const CurvePiece<Dim>& p, const CurvePiece<Dim>& q) {
-    if (!long_enough(p, A_) && !long_enough(q, B_)) return false;
+  // Records an overlap if one piece lies on the other curve and the two curves coincide from
+  // there on to where one of them ends, on both sides. `local` when the piece lies on the other
+  // curve but the two part further out (whole_overlap): curves within rounding of each other
+  // near a crossing at a tiny angle.
+  enum class Coincidence { none, overlap, local };
+  Coincidence find_overlap(const CurvePiece<Dim>& p, const CurvePiece<Dim>& q) {
+    if (!long_enough(p, A_) && !long_enough(q, B_)) return Coincidence::none;
     Eigen::AlignedBox<double, Dim> q_box = q.box, p_box = p.box;
     const Point<Dim> margin = Point<Dim>::Constant(match_);
     q_box.min() -= margin, q_box.max() += margin, p_box.min() -= margin, p_box.max() += margin;
+    std::optional<CurveOverlap> found;
     if (long_enough(p, A_) && q_box.contains(p.P.front()) && q_box.contains(p.P.back())) {
-      if (const auto on = lies_on(p, B_, q, match_)) {
-        overlaps_.push_back({p.t0, p.t1, on->first, on->second});
-        return true;
-      }
+      if (const auto on = lies_on(p, B_, q, match_)) found = CurveOverlap{p.t0, p.t1, on->first, on->second};
     }
-    if (long_enough(q, B_) && p_box.contains(q.P.front()) && p_box.contains(q.P.back())) {
+    if (!found && long_enough(q, B_) && p_box.contains(q.P.front()) && p_box.contains(q.P.back())) {
       if (const auto on = lies_on(q, A_, p, match_)) {
-        if (on->first < on->second) {
-          overlaps_.push_back({on->first, on->second, q.t0, q.t1});
-        } else {
-          overlaps_.push_back({on->second, on->first, q.t1, q.t0});
-        }
-        return true;
+        found = on->first < on->second ? CurveOverlap{on->first, on->second, q.t0, q.t1}
+                                       : CurveOverlap{on->second, on->first, q.t1, q.t0};
       }
     }
-    return false;
+    if (!found) return Coincidence::none;
+    const std::optional<CurveOverlap> whole = whole_overlap(*found, A_, B_, match_);
+    if (!whole) return Coincidence::local;
+    overlaps_.push_back(*whole);
+    return Coincidence::overlap;
   }
 
-  // Overlaps are looked for on pieces at least max(size / 1024, 64 tolerance) long, or whole
-  // curves at least 64 tolerance long: shorter coincidences are contacts.
   bool long_enough(const CurvePiece<Dim>& piece, const RationalBezierCurve<Dim>& curve) const {
     const double length = (piece.P.back() - piece.P.front()).norm();
     if (!(length >= 64.0 * tolerance_)) return false;

@@ -106,33 +106,52 @@ std::vector<CurveOverlap> merge_touching(std::vector<CurveOverlap> list, double 
 }
 
 template <int Dim>
+CurveOverlap continued_overlap(CurveOverlap o, const RationalBezierCurve<Dim>& first,
+                               const RationalBezierCurve<Dim>& second, double match) {
+  const double direction = o.s1 > o.s0 ? 1.0 : -1.0;
+  if (o.t0 > first.a()) {
+    const auto [s, d] = project_onto(second, first.evaluate(first.a()), second.a(), second.b());
+    const double end = direction > 0 ? second.a() : second.b();
+    if (d <= match && (s - o.s0) * direction <= 0.0) {
+      o.t0 = first.a(), o.s0 = s;
+    } else if (const auto [t, e] = project_onto(first, second.evaluate(end), first.a(), o.t0); e <= match && t <= o.t0) {
+      o.t0 = t, o.s0 = end;
+    }
+  }
+  if (o.t1 < first.b()) {
+    const auto [s, d] = project_onto(second, first.evaluate(first.b()), second.a(), second.b());
+    const double end = direction > 0 ? second.b() : second.a();
+    if (d <= match && (s - o.s1) * direction >= 0.0) {
+      o.t1 = first.b(), o.s1 = s;
+    } else if (const auto [t, e] = project_onto(first, second.evaluate(end), o.t1, first.b()); e <= match && t >= o.t1) {
+      o.t1 = t, o.s1 = end;
+    }
+  }
+  return o;
+}
+
+template <int Dim>
+std::optional<CurveOverlap> whole_overlap(const CurveOverlap& found, const RationalBezierCurve<Dim>& first,
+                                          const RationalBezierCurve<Dim>& second, double match) {
+  const CurveOverlap o = continued_overlap(found, first, second, match);
+  // Each end of a coincidence is an end of one of the curves (see the header).
+  const bool starts = o.t0 == first.a() || o.s0 == second.a() || o.s0 == second.b();
+  const bool ends = o.t1 == first.b() || o.s1 == second.a() || o.s1 == second.b();
+  if (!starts || !ends) return std::nullopt;
+  const CurvePiece<Dim> piece = curve_piece(first, o.t0, o.t1);
+  const CurvePiece<Dim> hint = curve_piece(second, std::min(o.s0, o.s1), std::max(o.s0, o.s1));
+  const auto on = lies_on(piece, second, hint, match);
+  if (!on) return std::nullopt;
+  return CurveOverlap{o.t0, o.t1, on->first, on->second};
+}
+
+template <int Dim>
 std::vector<CurveOverlap> merged_overlaps(std::vector<CurveOverlap> overlaps, const RationalBezierCurve<Dim>& first,
                                           const RationalBezierCurve<Dim>& second, double match) {
   const double t_margin = 1e-12 * (first.b() - first.a());
   const double s_margin = 1e-12 * (second.b() - second.a());
   overlaps = merge_touching(std::move(overlaps), t_margin, s_margin);
-  // Continue each overlap to the end of one of the curves (analytic continuation).
-  for (CurveOverlap& o : overlaps) {
-    const double direction = o.s1 > o.s0 ? 1.0 : -1.0;
-    if (o.t0 > first.a()) {
-      const auto [s, d] = project_onto(second, first.evaluate(first.a()), second.a(), second.b());
-      const double end = direction > 0 ? second.a() : second.b();
-      if (d <= match && (s - o.s0) * direction <= 0.0) {
-        o.t0 = first.a(), o.s0 = s;
-      } else if (const auto [t, e] = project_onto(first, second.evaluate(end), first.a(), o.t0); e <= match && t <= o.t0) {
-        o.t0 = t, o.s0 = end;
-      }
-    }
-    if (o.t1 < first.b()) {
-      const auto [s, d] = project_onto(second, first.evaluate(first.b()), second.a(), second.b());
-      const double end = direction > 0 ? second.b() : second.a();
-      if (d <= match && (s - o.s1) * direction >= 0.0) {
-        o.t1 = first.b(), o.s1 = s;
-      } else if (const auto [t, e] = project_onto(first, second.evaluate(end), o.t1, first.b()); e <= match && t >= o.t1) {
-        o.t1 = t, o.s1 = end;
-      }
-    }
-  }
+  for (CurveOverlap& o : overlaps) o = continued_overlap(o, first, second, match);
   return merge_touching(std::move(overlaps), t_margin, s_margin);
 }
 
@@ -141,6 +160,8 @@ std::vector<CurveOverlap> merged_overlaps(std::vector<CurveOverlap> overlaps, co
   template std::optional<std::pair<double, double>> lies_on(const CurvePiece<D>&, const RationalBezierCurve<D>&,     \
                                                             const CurvePiece<D>&, double);                           \
   template std::vector<CurveOverlap> merged_overlaps(std::vector<CurveOverlap>, const RationalBezierCurve<D>&,       \
+                                                     const RationalBezierCurve<D>&, double);                         \
+  template std::optional<CurveOverlap> whole_overlap(const CurveOverlap&, const RationalBezierCurve<D>&,             \
                                                      const RationalBezierCurve<D>&, double);
 PATCHWORK_INSTANTIATE(2)
 PATCHWORK_INSTANTIATE(3)

@@ -32,6 +32,14 @@ std::optional<std::pair<double, double>> lies_on(const CurvePiece<Dim>& piece, c
 /// within s_margin. Sorted by t0.
 std::vector<CurveOverlap> merge_touching(std::vector<CurveOverlap> overlaps, double t_margin, double s_margin);
 
+/// The overlap `found` continued on both sides to where the first or the second curve ends, if
+/// the continued pieces still lie on each other: two curves that coincide on an interval (the
+/// same curve under a reparametrisation) coincide until one of them ends, while two that merely
+/// run within `match` of each other (a crossing at a tiny angle) part before. Nothing if they do.
+template <int Dim>
+std::optional<CurveOverlap> whole_overlap(const CurveOverlap& found, const RationalBezierCurve<Dim>& first,
+                                          const RationalBezierCurve<Dim>& second, double match);
+
 /// Merges overlaps that touch (same direction, t and s intervals meeting) and continues each to
 /// where the first or the second curve ends. Sorted by t0.
 template <int Dim>

@@ -149,6 +149,26 @@ TEST(CurveIntersection, TouchingCirclesMeetOnceTangentially) {
   EXPECT_LT((points[0].point - Vec2(1, 0)).norm(), 1e-6);
 }
 
+TEST(CurveIntersection, NearParallelCubicsCrossOnceAndDoNotOverlap) {
+  // A cubic and the same cubic lifted by e (3t - 3/2) (Bernstein e (-3/2, -1/2, 1/2, 3/2)): they
+  // cross once, at t = s = 1/2, at an angle of about 3e. Over a piece of 2^-10 around the
+  // crossing they are within rounding of each other, which is no overlap: they part further out.
+  for (int k = 0; k < 4; ++k) {
+    const double e = std::ldexp(1.0, -(10 + 8 * k));
+    const BezierCurve2 touching({Vec2(0, 1), Vec2(1, 0), Vec2(2, -1), Vec2(3, 2)});
+    const BezierCurve2 lifted({Vec2(0, 1 - 1.5 * e), Vec2(1, -0.5 * e), Vec2(2, -1 + 0.5 * e), Vec2(3, 2 + 1.5 * e)});
+    const auto result = intersect_curves(touching, lifted);
+    EXPECT_TRUE(result.overlaps.empty()) << "e = 2^" << -(10 + 8 * k);
+    ASSERT_EQ(result.points.size(), 1u) << "e = 2^" << -(10 + 8 * k);
+    // Below a sine of 1e-4 the crossing is a contact (flagged tangential) whose bounds hold it.
+    const auto& x = result.points[0];
+    EXPECT_EQ(x.tangential, k > 0);
+    EXPECT_LE(std::abs(x.t - 0.5), x.t_bound);
+    EXPECT_LE(std::abs(x.s - 0.5), x.s_bound);
+    EXPECT_LE(x.t_bound, 1.0 / 32);  // the pieces where they were found within rounding
+  }
+}
+
 TEST(CurveIntersection, CurveAgainstItsOwnPieceIsOneOverlap) {
   const BezierCurve2 curve({Vec2(0, 0), Vec2(1, 2), Vec2(2, -1), Vec2(3, 1)});
   const BezierCurve2 piece = subcurve(curve, 0.25, 0.75);
