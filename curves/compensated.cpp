@@ -10,8 +10,6 @@
 namespace patchwork {
 namespace {
 
-constexpr double unit_roundoff = std::numeric_limits<double>::epsilon() / 2.0;  // u = 2^-53
-
 // Error-free transformations: a + b = sum + error and a * b = product + error, exactly.
 inline void two_sum(double a, double b, double& sum, double& error) {
   sum = a + b;

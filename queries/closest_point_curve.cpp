@@ -75,7 +75,7 @@ template <int Dim>
 double margin_of(const std::vector<Point<Dim + 1>>& points, int depth) {
   double size = 0.0;
   for (const auto& h : points) size = std::max(size, dehomogenised<Dim>(h).cwiseAbs().maxCoeff());
-  return 8.0 * (depth + 4) * (static_cast<double>(points.size()) + 1) * detail::unit_roundoff * size;
+  return 8.0 * (depth + 4) * (static_cast<double>(points.size()) + 1) * unit_roundoff * size;
 }
 
 // The distance from q to a cylinder about the chord P_0 P_n that holds every control point (the
@@ -149,11 +149,11 @@ Foot newton_foot(const Segment<Dim>& segment, int index, double t, const Point<D
     const double distance = (point - q).norm();
     // Equal up to rounding counts as no worse: at a minimum the distance is flat, and the
     // converged, orthogonal foot is the one to keep.
-    if (distance <= best + 8 * detail::unit_roundoff * (best + q.cwiseAbs().maxCoeff() + point.cwiseAbs().maxCoeff())) {
+    if (distance <= best + 8 * unit_roundoff * (best + q.cwiseAbs().maxCoeff() + point.cwiseAbs().maxCoeff())) {
       best = distance;
       best_t = next;
     }
-    if (std::abs(next - t) <= 4 * detail::unit_roundoff * std::max({std::abs(t), std::abs(segment.a), std::abs(segment.b)})) break;
+    if (std::abs(next - t) <= 4 * unit_roundoff * std::max({std::abs(t), std::abs(segment.a), std::abs(segment.b)})) break;
     t = next;
   }
   return {index, best_t, best};
@@ -221,7 +221,7 @@ CurveClosestPoint<Dim> search(const std::vector<Segment<Dim>>& segments, const P
   // orthogonal); its distance is then taken from the exact curve.
   {
     const Foot polished = newton_foot(segments[static_cast<std::size_t>(best.segment)], best.segment, best.t, q);
-    if (polished.distance <= best.distance + 8 * detail::unit_roundoff * (best.distance + size)) best = polished;
+    if (polished.distance <= best.distance + 8 * unit_roundoff * (best.distance + size)) best = polished;
   }
   const auto& seg = segments[static_cast<std::size_t>(best.segment)];
   const Point<Dim> foot = seg.derivatives(seg.curve, best.t)[0];

@@ -137,7 +137,7 @@ SurfaceClosestPoint search(const PatchBvh& bvh, const Vec3& q, const ClosestPoin
   // orthogonal).
   {
     const detail::PatchFoot polished = detail::newton_foot(set, best.patch, best.u, best.v, q);
-    if (polished.distance <= best.distance + 8 * detail::unit_roundoff * (best.distance + size))
+    if (polished.distance <= best.distance + 8 * unit_roundoff * (best.distance + size))
       best = {best.patch, polished.u, polished.v, polished.distance};
   }
   SurfaceClosestPoint result;

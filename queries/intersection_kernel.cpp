@@ -12,8 +12,6 @@
 namespace patchwork::detail {
 namespace {
 
-constexpr double unit_roundoff = 0x1p-53;
-
 Interval widened(Interval x) {
   const double e = 4.0 * unit_roundoff * (std::abs(x.lo) + std::abs(x.hi)) + std::numeric_limits<double>::denorm_min();
   return {x.lo - e, x.hi + e};

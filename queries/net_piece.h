@@ -29,9 +29,6 @@
 
 namespace patchwork::detail {
 
-/// Half the machine epsilon: the relative error of one rounding.
-inline constexpr double unit_roundoff = std::numeric_limits<double>::epsilon() / 2;
-
 /// A sub-patch's homogeneous control net and where it lies in its patch.
 struct NetPiece {
   std::uint32_t patch = 0;
