@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "queries/double_box_walk.h"
 #include "queries/patch_evaluation.h"
 #include "queries/query_arguments.h"
 #include "queries/ray_piece_nets.h"
@@ -95,6 +96,25 @@ struct HitCandidate {
   double off_ray;
 };
 
+// The lengths one ray's answers are resolved to. The scene's size sets them, unless the ray's own
+// rounding is larger: a point on the ray is placed to a few units u of |o| and of the scene's
+// coordinates (a ray from 10^12 away is 10^-4 uncertain). Pieces below `tiny_piece` are settled
+// without halving; a point within `on_ray` of the ray is on it, and hits within `same_point` of
+// each other are one; a tangent contact, known to about the square root of its rounding, merges
+// its candidates within `contact`.
+struct Resolution {
+  double tiny_piece, on_ray, same_point, contact;
+};
+
+Resolution resolution_of(const PatchBvh& bvh, const Vec3& origin) {
+  const Eigen::AlignedBox3d& root = bvh.nodes().front().box;
+  const double coordinates = root.min().cwiseAbs().cwiseMax(root.max().cwiseAbs()).maxCoeff();
+  const double scene = bvh.size();
+  const double noise = 8 * unit_roundoff * (origin.cwiseAbs().maxCoeff() + coordinates);
+  const double point = std::max(1e-9 * scene, 16 * noise);
+  return {std::max(1e-7 * scene, 64 * noise), point, point, std::max(1e-4 * scene, 4 * std::sqrt(noise * scene))};
+}
+
 // Adds the hit at (u, v) of patch p, whose derivatives there are `d` (those of the clamped (u, v)
 // are computed here where clamping moves it).
 void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, double v, FirstDerivatives d, bool grazing,
@@ -122,11 +142,11 @@ void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, dou
 
 // A piece with no certified answer: false (halve it) unless it is tiny, when its centre moved
 // onto the ray by Newton is a tangent contact if it is on the ray.
-bool settle_uncertified(const PatchSet& set, const Ray& ray, const detail::NetPiece& piece, double size,
+bool settle_uncertified(const PatchSet& set, const Ray& ray, const detail::NetPiece& piece, const Resolution& resolution,
                         std::vector<HitCandidate>& hits) {
   // Small in space (a wedge at a pole is small long before its parameter range is), or in
   // both parameters.
-  const bool tiny = detail::control_box(piece).diagonal().norm() <= 1e-7 * size ||
+  const bool tiny = detail::control_box(piece).diagonal().norm() <= resolution.tiny_piece ||
                     ((piece.u1 - piece.u0) <= 0x1p-30 && (piece.v1 - piece.v0) <= 0x1p-30);
   if (!tiny) return false;
   // Uncertified down to the smallest pieces: a tangent contact if the centre is on the ray.
@@ -137,13 +157,13 @@ bool settle_uncertified(const PatchSet& set, const Ray& ray, const detail::NetPi
     v = std::clamp(v, 0.0, 1.0);
     d = first_derivatives(set, piece.patch, u, v);
   }
-  if (off_ray(ray, d.point) <= 1e-9 * size) add_hit(set, ray, piece.patch, u, v, d, true, hits);
+  if (off_ray(ray, d.point) <= resolution.on_ray) add_hit(set, ray, piece.patch, u, v, d, true, hits);
   return true;
 }
 
 // The hits of one piece whose scalar nets are `nets`; false when it must be halved.
 template <class Nets>
-bool settle_piece(const PatchSet& set, const Ray& ray, const detail::NetPiece& piece, double size, const Nets& nets,
+bool settle_piece(const PatchSet& set, const Ray& ray, const detail::NetPiece& piece, const Resolution& resolution, const Nets& nets,
                   std::vector<HitCandidate>& hits) {
   if (one_sign(nets.g[0], nets.margin) || one_sign(nets.g[1], nets.margin) || hull_misses_origin(nets)) return true;
   const JacobianRanges ranges = jacobian_ranges(nets);
@@ -160,11 +180,11 @@ bool settle_piece(const PatchSet& set, const Ray& ray, const detail::NetPiece& p
     }
     // Newton left the piece: a hit near its edge, or none; halving decides.
   }
-  return settle_uncertified(set, ray, piece, size, hits);
+  return settle_uncertified(set, ray, piece, resolution, hits);
 }
 
 // The hits in one piece, halving where one hit per piece cannot be certified.
-void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& root, double size, std::vector<HitCandidate>& hits,
+void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& root, const Resolution& resolution, std::vector<HitCandidate>& hits,
                 std::int64_t& examined) {
   // The pieces still to settle, in storage of the thread's that every call reuses.
   thread_local std::vector<detail::NetPiece> stack;
@@ -175,11 +195,11 @@ void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& roo
     if (piece.n == 3 && piece.m == 3) {
       FixedScalarNets<3, 3> nets;
       fill_scalar_nets(piece, ray.origin, ray.a, ray.b, nets);
-      return settle_piece(set, ray, piece, size, nets, hits);
+      return settle_piece(set, ray, piece, resolution, nets, hits);
     }
     ScalarNets nets{piece.n, piece.m, scratch_coefficients(), 0.0};
     fill_scalar_nets(piece, ray.origin, ray.a, ray.b, nets);
-    return settle_piece(set, ray, piece, size, nets, hits);
+    return settle_piece(set, ray, piece, resolution, nets, hits);
   };
   const auto halve = [&](const detail::NetPiece& piece) {
     int dir = detail::longer_direction(piece);
@@ -194,46 +214,6 @@ void piece_hits(const PatchSet& set, const Ray& ray, const detail::NetPiece& roo
   }
 }
 
-// What the box tests of one ray share, worked out once per ray.
-struct Slabs {
-  Vec3 origin;
-  Vec3 inverse;
-  double t_min, t_max;
-  // Per axis: the direction has no finite inverse there (0, or so small that 1/d overflows).
-  std::array<bool, 3> parallel;
-  // Per axis: the direction is negative (the box's max face is met first).
-  std::array<bool, 3> negative;
-};
-
-Slabs slabs_of(const Vec3& origin, const Vec3& direction, double t_min, double t_max) {
-  Slabs s{origin, direction.cwiseInverse(), t_min, t_max, {}, {}};
-  for (int c = 0; c < 3; ++c) {
-    s.parallel[static_cast<std::size_t>(c)] = !std::isfinite(s.inverse[c]);
-    s.negative[static_cast<std::size_t>(c)] = direction[c] < 0.0;
-  }
-  return s;
-}
-
-// Whether the ray's parameter interval inside a box is not empty. A parallel axis keeps the ray
-// if the origin is within the slab (a NaN from 0 * inf, where the inverse is huge but finite,
-// drops out of std::max and std::min, which keeps the ray: never a missed box).
-bool slab(const Eigen::AlignedBox3d& box, const Slabs& s) {
-  double t0 = s.t_min, t1 = s.t_max;
-  for (int c = 0; c < 3; ++c) {
-    const auto k = static_cast<std::size_t>(c);
-    if (s.parallel[k]) {
-      if (s.origin[c] < box.min()[c] || s.origin[c] > box.max()[c]) return false;
-      continue;
-    }
-    const double near = ((s.negative[k] ? box.max()[c] : box.min()[c]) - s.origin[c]) * s.inverse[c];
-    const double far = ((s.negative[k] ? box.min()[c] : box.max()[c]) - s.origin[c]) * s.inverse[c];
-    t0 = std::max(t0, near);
-    t1 = std::min(t1, far);
-    if (t0 > t1) return false;
-  }
-  return true;
-}
-
 // Asks for the cache lines of [data, data + bytes) ahead of their use (a hint; nothing on
 // compilers without the builtin).
 void prefetch(const void* data, std::size_t bytes) {
@@ -244,25 +224,6 @@ void prefetch(const void* data, std::size_t bytes) {
   (void)data;
   (void)bytes;
 #endif
-}
-
-// Appends the pieces whose double boxes the ray reaches (the binary tree's walk).
-void double_box_pieces(const PatchBvh& bvh, const Slabs& slabs, std::vector<std::uint32_t>& pieces) {
-  thread_local std::vector<std::uint32_t> stack;
-  stack.assign(1, 0);
-  while (!stack.empty()) {
-    const std::uint32_t index = stack.back();
-    stack.pop_back();
-    const PatchBvh::Node& node = bvh.nodes()[index];
-    if (!slab(node.box, slabs)) continue;
-    if (!node.leaf()) {
-      stack.push_back(node.second_or_first_piece);
-      stack.push_back(index + 1);
-      continue;
-    }
-    for (std::uint32_t k = 0; k < node.piece_count; ++k)
-      if (slab(bvh.piece_boxes()[node.second_or_first_piece + k], slabs)) pieces.push_back(node.second_or_first_piece + k);
-  }
 }
 
 }  // namespace
@@ -277,7 +238,7 @@ RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction,
   const Vec3 helper = std::abs(unit.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
   ray.a = unit.cross(helper).normalized();
   ray.b = unit.cross(ray.a).normalized();
-  const double size = std::max(bvh.size(), origin.norm() * 1e-3);
+  const Resolution resolution = resolution_of(bvh, origin);
 
   RayHits result;
   // Storage of the thread's that every ray reuses (a ray allocates only its result).
@@ -289,7 +250,7 @@ RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction,
   candidates.clear();
   // The float boxes four at a time; the double boxes for a ray too far out for their pad.
   if (!bvh.wide().reaches(origin, direction, options.t_min, options.t_max, candidates))
-    double_box_pieces(bvh, slabs_of(origin, direction, options.t_min, options.t_max), candidates);
+    detail::double_box_pieces(bvh, origin, direction, options.t_min, options.t_max, candidates);
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     // The pieces are scattered in memory (each net its own allocation) and most rays meet few
     // twice: fetch the next piece's net and the one after's header while this one is settled.
@@ -298,12 +259,12 @@ RayHits ray_cast(const PatchBvh& bvh, const Vec3& origin, const Vec3& direction,
       const std::vector<Vec4>& net = bvh.pieces()[candidates[k + 1]].net;
       prefetch(net.data(), net.size() * sizeof(Vec4));
     }
-    piece_hits(bvh.set(), ray, bvh.pieces()[candidates[k]], size, found, result.pieces);
+    piece_hits(bvh.set(), ray, bvh.pieces()[candidates[k]], resolution, found, result.pieces);
   }
   // One hit per point: the same point found from two pieces or two patches (a shared edge), and
   // the cluster of tiny pieces around a tangent contact; the one nearest the ray stands for it.
   std::sort(found.begin(), found.end(), [](const HitCandidate& x, const HitCandidate& y) { return x.hit.t < y.hit.t; });
-  const double same = 1e-9 * size, contact = 1e-4 * size;
+  const double same = resolution.same_point, contact = resolution.contact;
   for (const HitCandidate& c : found) {
     if (!kept.empty()) {
       HitCandidate& last = kept.back();

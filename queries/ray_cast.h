@@ -19,6 +19,8 @@
 // centre, moved onto the ray by Newton, is within 1e-9 of the size of it is a tangent (grazing)
 // hit, flagged. Hits within 1e-9 of the size of each other (the same point
 // found from two patches at a shared edge or corner, or from two pieces) are reported once.
+// The size is the scene's diagonal, or more where the ray starts so far out that its own
+// rounding is coarser (docs/queries.md gives the lengths).
 //
 // The normal is the patch's unit normal (surface_normal.h), the limit normal at collapsed edges.
 

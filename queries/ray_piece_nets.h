@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/assert.h"
 #include "core/errors.h"
 #include "core/types.h"
 #include "queries/net_piece.h"
@@ -51,6 +52,7 @@ template <class Nets>
 void fill_scalar_nets(const NetPiece& piece, const Vec3& origin, const Vec3& a, const Vec3& b, Nets& nets) {
   const std::size_t count = piece.net.size();
   nets.resize(count);
+  PATCHWORK_ASSERT(count == nets.g[0].size(), "ray_nets: a piece's net does not match its scalar nets' degree");
   double size = 0.0, weighted = 0.0, least_weight = std::numeric_limits<double>::infinity();
   // w a.(P - o) = a.(wP) - w (a.o): no division by the weights.
   const double a_origin = a.dot(origin), b_origin = b.dot(origin);
@@ -264,6 +266,7 @@ template <class Nets>
 bool local_newton(const Nets& nets, const ScalarValues& at_centre, double& s, double& t) {
   const double hair = 1e-9;
   s = t = 0.5;
+  double previous_step = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < 20; ++iteration) {
     const ScalarValues g = iteration == 0 ? at_centre : scalar_derivatives(nets, s, t);
     const double det = g[0][1] * g[1][2] - g[0][2] * g[1][1];
@@ -275,10 +278,13 @@ bool local_newton(const Nets& nets, const ScalarValues& at_centre, double& s, do
     if (!(s > -0.25 && s < 1.25 && t > -0.25 && t < 1.25)) return false;
     const double step = std::abs(ds) + std::abs(dt);
     if (step <= 1e-13) break;
-    // Converging (quadratically: what is left is well below the step) to a point outside the
-    // piece by more than twice the step: no need to finish; false only means halving.
+    // Converging (the step at most a quarter of the last: what is left is then below a third of
+    // the step, and quadratic convergence makes it far less) to a point outside the piece by
+    // more than twice the step: no need to finish. Not a claim that there is no zero: false
+    // only means halving.
     const double outside = std::max({-s, s - 1, -t, t - 1});
-    if (iteration > 0 && outside > 2 * step + hair) return false;
+    if (step <= 0.25 * previous_step && outside > 2 * step + hair) return false;
+    previous_step = step;
   }
   return s >= -hair && s <= 1 + hair && t >= -hair && t <= 1 + hair;
 }

@@ -6,16 +6,18 @@
 // repeatedly replaces its largest (by surface area) expandable child by that child's two
 // children, up to four. A child is a node or a piece.
 //
-// No box is ever missed although floats round: every box is the double box widened by `pad`
-// (2^-20 of the scene's extent, |coordinates| plus diagonal) and then rounded outward to floats
-// (std::nextafter where the cast rounded inward), so it contains the double box with room to
-// spare. A ray is tested as a float ray (q, e) that starts where the double ray enters the root
-// box: the double ray's points between entry and exit are within `pad` of the float ray's
-// (rounding moves q and e by 2^-24 of their size; `reaches` checks the bound for each ray and
-// returns false where it does not hold, so that the caller walks the double tree instead), and
-// the float slab test is made conservative as in pbrt (Pharr et al., 3rd ed., 3.9.2): each slab
-// parameter carries at most three roundings, so the far end is stretched by 2^-20 relative (more
-// than 2 gamma_3) before it is compared.
+// No box is ever missed although floats round: boxes are stored relative to the root box's
+// centre c, and every box is the double box less c, widened by `pad` (2^-18 of the scene's
+// diagonal) and by the subtraction's rounding, then rounded outward to floats (std::nextafter
+// where the cast rounded inward), so it contains the double box with room to spare. A ray is
+// tested as a float ray (q, e) that starts where the double ray enters the root box (a clip
+// widened by its own rounding, so an empty clip is never wrong, however far the ray), less c:
+// the double ray's points between entry and exit are within `pad` of the float ray's (rounding
+// moves q and e by 2^-24 of their size, and subnormals by 2^-150; `reaches` checks the bound
+// for each ray and returns false where it does not hold, so that the caller walks the double
+// tree instead), and the float slab test is made conservative as in pbrt (Pharr et al., 3rd ed.,
+// 3.9.2): each slab parameter carries at most three roundings, so the far end is stretched by
+// 2^-20 relative (more than 2 gamma_3) and by the least normal float before it is compared.
 
 #include <array>
 #include <cstdint>
@@ -50,11 +52,22 @@ class WideBvh {
   const std::vector<Node>& nodes() const noexcept { return nodes_; }
   /// What every box is widened by before rounding.
   double pad() const noexcept { return pad_; }
+  /// The point the float boxes are relative to (the root box's centre).
+  const Vec3& centre() const noexcept { return centre_; }
 
  private:
   std::vector<Node> nodes_;
   Eigen::AlignedBox3d root_;
+  Vec3 centre_;
+  int depth_ = 0;
   double pad_ = 0.0;
 };
+
+/// Bit k set: the float ray q + s e, 0 <= s <= far_end, may reach child k's box of `node`
+/// (`inverse` = 1 / e, `negative` = e's sign bits, q relative to the boxes' centre): four slab
+/// tests at once with SSE where the compiler has it.
+unsigned node_mask(const WideBvh::Node& node, const float* q, const float* inverse, const int* negative, float far_end);
+/// The same test one box at a time, without SSE (what node_mask does without it).
+unsigned node_mask_scalar(const WideBvh::Node& node, const float* q, const float* inverse, const int* negative, float far_end);
 
 }  // namespace patchwork::detail

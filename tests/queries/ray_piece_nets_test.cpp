@@ -45,6 +45,32 @@ RC_GTEST_PROP(RayPieceNets, NeverDropsAPieceWithAZero, ()) {
   RC_ASSERT(!detail::ray_nets::hull_misses_origin(nets));
 }
 
+// The nets' margin is what keeps a piece whose exact nets touch the half-plane's boundary: exact
+// nets with a common zero at (1/2, 0) on the edge t = 0, whose row there lies on a line through
+// the origin (g_1 = 0, g_2 = 2s - 1, rotated by a random angle) and whose other rows lie beyond
+// it, moved off the line by margin / 2 (as rounding may move them). The computed points are then
+// all strictly in a half-plane, by less than the margin: kept. (The test without its margin
+// drops the piece.)
+RC_GTEST_PROP(RayPieceNets, KeepsAZeroOnTheHalfPlanesBoundaryWithinTheMargin, ()) {
+  FixedScalarNets<3, 3> nets;
+  nets.margin = *rc::gen::element(1e-12, 1e-8, 1e-4);
+  const double angle = *rc::gen::inRange(0, 6284) / 1000.0;
+  const double c = std::cos(angle), s = std::sin(angle);
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      // Before the rotation: x = 0 on the edge row, beyond the line elsewhere; y anything.
+      const double x = j == 0 ? 0.0 : j * (0.5 + std::abs(coordinate()));
+      const double y = j == 0 ? -1.0 + 2.0 * i / 3.0 : coordinate();
+      // Off the line by half the margin (the line's normal is (c, s) after the rotation).
+      const double moved = x + 0.5 * nets.margin;
+      const auto k = static_cast<std::size_t>(i + 4 * j);
+      nets.g[0][k] = c * moved - s * y;
+      nets.g[1][k] = s * moved + c * y;
+    }
+  }
+  RC_ASSERT(!detail::ray_nets::hull_misses_origin(nets));
+}
+
 TEST(RayPieceNets, DropsAPieceMissedObliquely) {
   // Points with x + y >= 1 but both signs in x and in y: no axis separates them from the origin.
   FixedScalarNets<3, 3> nets;
