@@ -1,6 +1,7 @@
 #include "queries/self_intersection.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -36,36 +37,76 @@ std::vector<Point<Dim>> hodograph_numerator(const std::vector<Point<Dim + 1>>& H
   return N;
 }
 
-// Whether the piece's hodograph numerator lies in an open half-space cone (file comment).
+// The rounding level of the hodograph numerator's coefficients on any piece of the curve (file
+// comment): 64 n^2 u max |H_xyz| max w.
 template <int Dim>
-bool monotone(const std::vector<Point<Dim + 1>>& H) {
-  const std::vector<Point<Dim>> N = hodograph_numerator<Dim>(H);
-  if (N.empty()) return true;
+double hodograph_noise(const RationalBezierCurve<Dim>& curve) {
+  double scale = 0.0, w_max = 0.0;
+  for (const auto& H : curve.homogeneous().control_points()) {
+    scale = std::max(scale, H.template head<Dim>().cwiseAbs().maxCoeff());
+    w_max = std::max(w_max, H[Dim]);
+  }
+  const int n = curve.degree();
+  return 64.0 * n * n * 0x1p-53 * scale * w_max;
+}
+
+// Whether the piece's hodograph numerator lies in an open half-space cone, its coefficients within
+// `noise` of zero left out (file comment).
+template <int Dim>
+bool monotone(const std::vector<Point<Dim>>& N, double noise) {
+  const auto counts = [noise](const Point<Dim>& direction) { return direction.norm() > noise; };
+  if (std::none_of(N.begin(), N.end(), counts)) return true;  // a point
   Point<Dim> v = Point<Dim>::Zero();
   for (const auto& direction : N) {
-    if (direction.norm() > 0.0) v += direction.normalized();
+    if (counts(direction)) v += direction.normalized();
   }
-  const auto vanishes = [](const Point<Dim>& direction) { return direction.norm() == 0.0; };
-  if (std::all_of(N.begin(), N.end(), vanishes)) return true;  // a point
   if (!(v.norm() > 0.0)) return false;
   v.normalize();
   for (const auto& direction : N) {
-    if (direction.norm() > 0.0 && !(v.dot(direction) >= 1e-3 * direction.norm())) return false;
+    if (counts(direction) && !(v.dot(direction) >= 1e-3 * direction.norm())) return false;
   }
   return true;
 }
 
+// Where on the piece (local parameter in [0, 1]) the hodograph numerator N is shortest, and |N|
+// there: the best of 33 samples, refined by golden-section search between its neighbours.
 template <int Dim>
-void monotone_pieces(const RationalBezierCurve<Dim>& curve, double t0, double t1, int depth,
+std::pair<double, double> slowest(const std::vector<Point<Dim>>& N) {
+  std::array<std::vector<double>, Dim> coordinates;
+  for (int c = 0; c < Dim; ++c) {
+    for (const auto& coefficient : N) coordinates[c].push_back(coefficient[c]);
+  }
+  double best_tau = 0.0, best = std::numeric_limits<double>::infinity();
+  const auto speed = [&](double tau) {
+    Point<Dim> value;
+    for (int c = 0; c < Dim; ++c) value[c] = bernstein_evaluate(coordinates[c], tau);
+    const double length = value.norm();
+    if (length < best) best = length, best_tau = tau;
+    return length;
+  };
+  constexpr int samples = 32;
+  for (int k = 0; k <= samples; ++k) speed(static_cast<double>(k) / samples);
+  const double centre = best_tau;
+  detail::golden_section(std::max(0.0, centre - 1.0 / samples), std::min(1.0, centre + 1.0 / samples), speed);
+  return {best_tau, best};
+}
+
+// Splits [t0, t1] into monotone pieces (file comment): at a zero of the hodograph inside, else in
+// halves.
+template <int Dim>
+void monotone_pieces(const RationalBezierCurve<Dim>& curve, double t0, double t1, int depth, double noise,
                      std::vector<RationalBezierCurve<Dim>>& pieces) {
   const auto H = detail::reparametrized(curve.homogeneous().control_points(), curve.a(), curve.b(), t0, t1);
-  const double middle = 0.5 * (t0 + t1);
-  if (depth >= max_depth || monotone<Dim>(H) || !(t0 < middle && middle < t1)) {
+  const std::vector<Point<Dim>> N = hodograph_numerator<Dim>(H);
+  double cut = 0.5 * (t0 + t1);
+  if (depth >= max_depth || monotone<Dim>(N, noise) || !(t0 < cut && cut < t1)) {
     pieces.emplace_back(BezierCurve<Dim + 1>(H, t0, t1));
     return;
   }
-  monotone_pieces(curve, t0, middle, depth + 1, pieces);
-  monotone_pieces(curve, middle, t1, depth + 1, pieces);
+  const auto [tau, speed] = slowest<Dim>(N);
+  if (speed <= noise / 8.0 && 1.0 / 64.0 <= tau && tau <= 63.0 / 64.0) cut = t0 + tau * (t1 - t0);
+  monotone_pieces(curve, t0, cut, depth + 1, noise, pieces);
+  monotone_pieces(curve, cut, t1, depth + 1, noise, pieces);
 }
 
 // A curve on one line (every control point within eps of the line through the first control
@@ -198,7 +239,9 @@ template <int Dim>
 CurveIntersections<Dim> self_intersections_of_monotone_pieces(const std::vector<RationalBezierCurve<Dim>>& curve_pieces,
                                                               double tolerance, const Ends& ends) {
   std::vector<RationalBezierCurve<Dim>> pieces;
-  for (const auto& curve : curve_pieces) monotone_pieces(curve, curve.a(), curve.b(), 0, pieces);
+  for (const auto& curve : curve_pieces) {
+    monotone_pieces(curve, curve.a(), curve.b(), 0, hodograph_noise(curve), pieces);
+  }
   std::vector<Eigen::AlignedBox<double, Dim>> boxes(pieces.size());
   std::vector<double> scales(pieces.size(), std::numeric_limits<double>::min());
   for (std::size_t i = 0; i < pieces.size(); ++i) {

@@ -50,6 +50,28 @@ TEST(SelfIntersection, CuspIsNotACrossing) {
   EXPECT_NEAR(looped.points[0].point.x(), 0.5, 1e-12);
 }
 
+// Cusps where the branches do not mirror each other. A cubic with a cusp has no other double point
+// (a rational cubic has one singular point), so nothing is reported. Halved to depth 40 around the
+// cusp, the pieces once met in points and tiny overlaps.
+TEST(SelfIntersection, AsymmetricCuspsAreNotCrossings) {
+  // C' = (-3, 0) (1 - t)^2 + (9/2, 3/2) t (1 - t) + (0, -9/4) t^2 vanishes at t = 2/5, which no
+  // halving reaches: x' = 3/2 (1 - t)(5t - 2), y' = 3/4 t (2 - 5t).
+  const BezierCurve2 at_two_fifths({Vec2(0.25, -0.25), Vec2(-0.75, -0.25), Vec2(0, 0), Vec2(0, -0.75)});
+  // C' = (9/2, -9/4) (1 - t)^2 + (-15/2, 3) t (1 - t) + (3, -3/4) t^2 vanishes at t = 1/2:
+  // x' = 3/2 (2t - 1)(5t - 3), y' = -3/4 (2t - 1)(4t - 3).
+  const BezierCurve2 at_one_half({Vec2(-1, 0.75), Vec2(0.5, 0), Vec2(-0.75, 0.5), Vec2(0.25, 0.25)});
+  // C' = (-3/4, -3/2) (1 - t)^2 + (3/2, 9/2) t (1 - t) + (-3/4, -3) t^2 vanishes at t = 1/2 too:
+  // x' = -3/4 (2t - 1)^2, y' = -3/2 (2t - 1)(3t - 1), so x ~ (t - 1/2)^3, y ~ (t - 1/2)^2 there.
+  const BezierCurve2 semicubical({Vec2(0, 0.25), Vec2(-0.25, -0.25), Vec2(0, 0.5), Vec2(-0.25, -0.5)});
+  for (const auto& [cusp, t] :
+       {std::pair{at_two_fifths, 0.4}, std::pair{at_one_half, 0.5}, std::pair{semicubical, 0.5}}) {
+    EXPECT_LT(derivative(cusp, t, 1).norm(), 1e-15);
+    const auto result = self_intersections(cusp);
+    EXPECT_TRUE(result.points.empty()) << "cusp at " << t;
+    EXPECT_TRUE(result.overlaps.empty()) << "cusp at " << t;
+  }
+}
+
 TEST(SelfIntersection, PointCurveIsOnePiece) {
   // Every hodograph coefficient vanishes: one piece, nothing to report (it was split 2^40 ways).
   const auto result = self_intersections(BezierCurve2({Vec2(1, 1), Vec2(1, 1), Vec2(1, 1)}));
