@@ -597,7 +597,35 @@ double sampled_grid_distance(const BezierPatch3& patch, std::int64_t nu, std::in
   return result;
 }
 
-GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, std::int64_t min_segments) {
+namespace {
+
+// Whether the cell bound of the nu x nv grid is at most `tolerance`, from the memo's value where
+// that decides it. A grid asked about first is tested as without a memo (stopping once a box
+// exceeds the tolerance); asked again where that value does not decide, its whole bound is kept. grid_cell_bound(d, du, dv, stop) returns the bound itself when it is at most
+// stop, and otherwise a value above stop that the bound is at least: either way the comparison
+// with the tolerance is that of the bound itself, so the memo's answers are the direct ones.
+bool cell_bound_meets(const DirectionalBounds& d, std::int64_t nu, std::int64_t nv, double tolerance,
+                      GridSearchMemo* memo) {
+  const double du = 1.0 / static_cast<double>(nu);
+  const double dv = 1.0 / static_cast<double>(nv);
+  if (!memo) return grid_cell_bound(d, du, dv, tolerance) <= tolerance;
+  auto& known = memo->cell_bounds;
+  const auto entry = std::find_if(known.begin(), known.end(), [&](const auto& e) { return e.nu == nu && e.nv == nv; });
+  if (entry == known.end()) {
+    const double value = grid_cell_bound(d, du, dv, tolerance);
+    known.push_back({nu, nv, value, value <= tolerance});
+    return value <= tolerance;
+  }
+  if (entry->exact) return entry->value <= tolerance;
+  if (entry->value > tolerance) return false;
+  // Asked again, at a tolerance the value known does not decide (a camera's tolerances creep):
+  // the whole bound, once, so that no later tolerance needs it again.
+  entry->value = grid_cell_bound(d, du, dv);
+  entry->exact = true;
+  return entry->value <= tolerance;
+}
+
+GridSize search_grid(const SecondDerivativeBounds& M, double tolerance, std::int64_t min_segments, GridSearchMemo* memo) {
   if (!std::isfinite(tolerance) || !(tolerance > 0.0)) {
     throw InvalidInput(detail::message("grid_for_tolerance: tolerance ", tolerance, " is not positive and finite"));
   }
@@ -664,7 +692,7 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, s
     const double dv = 1.0 / static_cast<double>(nv);
     if (grid_cell_centre_value(*M.directions, du, dv) > tolerance) return false;  // a lower bound of the cell bound
     if (quick_grid_bound(M, du, dv) <= tolerance) return true;
-    return grid_cell_bound(*M.directions, du, dv, tolerance) <= tolerance;
+    return cell_bound_meets(*M.directions, nu, nv, tolerance, memo);
   };
   for (std::int64_t nu = min_segments; nu * min_segments < best.segments_u * best.segments_v; ++nu) {
     const std::int64_t most = (best.segments_u * best.segments_v - 1) / nu;
@@ -672,6 +700,43 @@ GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, s
     best = {nu, smallest(most, [&](std::int64_t nv) { return meets_cell_bound(nu, nv); })};
   }
   return best;
+}
+
+}  // namespace
+
+GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, std::int64_t min_segments) {
+  return search_grid(M, tolerance, min_segments, nullptr);
+}
+
+double flatness_bound(const SecondDerivativeBounds& M, std::int64_t nu, std::int64_t nv, double good_enough,
+                      GridSearchMemo& memo) {
+  const double du = 1.0 / static_cast<double>(nu), dv = 1.0 / static_cast<double>(nv);
+  const double quick = quick_grid_bound(M, du, dv);
+  if (quick <= good_enough || !M.directions) return quick;
+  auto& known = memo.cell_bounds;
+  auto entry = std::find_if(known.begin(), known.end(), [&](const auto& e) { return e.nu == nu && e.nv == nv; });
+  if (entry == known.end()) {
+    known.push_back({nu, nv, 0.0, false});
+    entry = known.end() - 1;
+  }
+  if (!entry->exact) {
+    // The whole bound: grid_cell_bound without a stop, as flatness_bound takes it.
+    entry->value = grid_cell_bound(*M.directions, du, dv);
+    entry->exact = true;
+  }
+  return std::min(quick, entry->value);
+}
+
+GridSize grid_for_tolerance(const SecondDerivativeBounds& M, double tolerance, std::int64_t min_segments,
+                            GridSearchMemo& memo) {
+  for (const GridSearchMemo::Answer& answer : memo.answers) {
+    if (answer.tolerance == tolerance && answer.min_segments == min_segments) return answer.grid;
+  }
+  // Throws before anything is remembered: a failing request is not an answer.
+  const GridSize grid = search_grid(M, tolerance, min_segments, &memo);
+  memo.answers.insert(memo.answers.begin(), {tolerance, min_segments, grid});
+  if (memo.answers.size() > 2) memo.answers.pop_back();
+  return grid;
 }
 
 }  // namespace patchwork

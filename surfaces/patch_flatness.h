@@ -157,4 +157,37 @@ struct GridSize {
 ///         [1, 2^20], or a side would need more than 2^20 segments.
 GridSize grid_for_tolerance(const SecondDerivativeBounds& bounds, double tolerance, std::int64_t min_segments = 1);
 
+/// What grid_for_tolerance has learnt about one set of bounds, for asking again at another
+/// tolerance (a renderer's next frame): the cell bounds of the grids it tried (each exact, or a
+/// value the bound is known to exceed, where the test stopped early), and its last answers. It
+/// holds for the bounds it was first used with, and for no other.
+struct GridSearchMemo {
+  struct CellBound {
+    std::int64_t nu, nv;
+    double value;
+    /// value is the cell bound itself; else the bound is at least value.
+    bool exact;
+  };
+  std::vector<CellBound> cell_bounds;
+  struct Answer {
+    double tolerance;
+    std::int64_t min_segments;
+    GridSize grid;
+  };
+  /// The last two answers, newest first (a tolerance that alternates between two values hits).
+  std::vector<Answer> answers;
+};
+
+/// flatness_bound(bounds, 1 / nu, 1 / nv, good_enough), the same value, with the cell bound taken
+/// from `memo` where it holds it whole, and kept there where it is computed.
+/// \pre memo was only used with these bounds; nu, nv >= 1.
+double flatness_bound(const SecondDerivativeBounds& bounds, std::int64_t nu, std::int64_t nv, double good_enough,
+                      GridSearchMemo& memo);
+
+/// grid_for_tolerance(bounds, tolerance, min_segments), answered from `memo` where it can and
+/// adding to it: the same grid as without a memo (it keeps values, not guesses), with the cell
+/// bounds of grids tried before not computed again. \pre memo was only used with these bounds.
+GridSize grid_for_tolerance(const SecondDerivativeBounds& bounds, double tolerance, std::int64_t min_segments,
+                            GridSearchMemo& memo);
+
 }  // namespace patchwork

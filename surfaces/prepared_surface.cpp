@@ -1,6 +1,7 @@
 #include "surfaces/prepared_surface.h"
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -16,6 +17,7 @@ namespace detail {
 // rest made once on first use under `lock` (not std::call_once: libstdc++'s can hang on the call
 // after one whose callable threw, GCC bug 66146, and making split pieces can throw bad_alloc).
 struct PreparedParts {
+  std::uint64_t identity = 0;
   std::vector<std::vector<SecondDerivativeBounds>> cells;
   double control_diagonal = 0.0;
   std::mutex lock;
@@ -28,9 +30,13 @@ struct PreparedParts {
 }  // namespace detail
 
 PreparedSurface::PreparedSurface(const PatchSet& set) : set_(&set), parts_(std::make_unique<detail::PreparedParts>()) {
+  static std::atomic<std::uint64_t> made{0};
+  parts_->identity = ++made;
   parts_->cells = detail::cell_bounds(set);
   parts_->control_diagonal = set.size();
 }
+
+std::uint64_t PreparedSurface::identity() const noexcept { return parts_->identity; }
 
 PreparedSurface::~PreparedSurface() = default;
 PreparedSurface::PreparedSurface(PreparedSurface&&) noexcept = default;
@@ -95,12 +101,29 @@ void detail::tessellate_prepared(const PreparedSurface& prepared, const Tessella
   const auto& cells = prepared.cell_bounds();
   int best_k = 1;
   SplitEstimate best;
+  // The per-frame call (a result passed in) keeps what its grid searches learn, per split k and
+  // piece, for the next run on this surface: the bounds do not change, only the tolerances.
+  std::array<std::vector<GridSearchMemo>, 3>* memos = nullptr;
+  if (keep_scratch) {
+    detail::TessellatorScratch& scratch = result.scratch.get();
+    if (scratch.memo_owner != prepared.identity()) {
+      for (auto& memo : scratch.grid_memos) memo.clear();
+      scratch.memo_owner = prepared.identity();
+    }
+    memos = &scratch.grid_memos;
+  }
+  const auto memos_of = [&](int k) -> std::vector<GridSearchMemo>* {
+    if (!memos) return nullptr;
+    std::vector<GridSearchMemo>& memo = (*memos)[k == 1 ? 0 : k == 2 ? 1 : 2];
+    memo.resize(cells.size() * static_cast<std::size_t>(k * k));
+    return &memo;
+  };
   // Split pieces do not join T-junctions: such sets are tessellated whole.
   if (options.split_patches && modes == 1 && std::isfinite(eps) && eps > 0.0 && prepared.set().t_junctions().empty()) {
     try {
-      best = detail::estimated_split(cells, 1, eps, options.threads);
+      best = detail::estimated_split(cells, 1, eps, options.threads, memos_of(1));
       for (int k : {2, 4}) {
-        SplitEstimate candidate = detail::estimated_split(cells, k, eps, options.threads);
+        SplitEstimate candidate = detail::estimated_split(cells, k, eps, options.threads, memos_of(k));
         if (candidate.cells < best.cells) best = std::move(candidate), best_k = k;
       }
     } catch (const InvalidInput&) {
@@ -112,7 +135,9 @@ void detail::tessellate_prepared(const PreparedSurface& prepared, const Tessella
   // The grids found for the choice are the plan's (the same bounds at the same tolerance).
   const std::vector<GridSize>* planned = best.grids.empty() ? nullptr : &best.grids;
   const SurfacePieces& chosen = best_k == 1 ? whole : prepared.pieces(best_k);
-  detail::Tessellator(chosen, options, planned, diagonal, solids).run(result, keep_scratch);
+  // The chosen pieces are in the estimate's order (patch by patch, k x k each).
+  PATCHWORK_ASSERT(chosen.count == cells.size() * static_cast<std::size_t>(best_k * best_k), "pieces of the split");
+  detail::Tessellator(chosen, options, planned, diagonal, solids, memos_of(best_k)).run(result, keep_scratch);
   result.tessellation_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result.measure_seconds;
 }

@@ -68,6 +68,9 @@ class PreparedSurface {
   /// Per patch, the solid it bounds, or -1 (SurfacePieces::solids; made on first use: a volume
   /// integral per patch, which only BackFaceCulling::automatic needs).
   const std::vector<std::int32_t>& solids() const;
+  /// A number no other PreparedSurface of the process has had (from 1): what a Tessellation's
+  /// scratch names as the surface its memos are of.
+  std::uint64_t identity() const noexcept;
 
  private:
   const PatchSet* set_;

@@ -263,16 +263,19 @@ SurfacePieces pieces_of(const PatchSet& set, const std::vector<std::vector<Secon
 }
 
 SplitEstimate estimated_split(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps,
-                              int threads) {
+                              int threads, std::vector<GridSearchMemo>* memos) {
   SplitEstimate estimate;
   const auto kk = static_cast<std::size_t>(k * k);
   estimate.grids.resize(cells.size() * kk);
+  PATCHWORK_ASSERT(memos == nullptr || memos->size() == estimate.grids.size(), "one grid memo per piece");
   // Each patch fills its own k x k slots: the same grids on any number of threads.
   parallel_for(cells.size(), threads, [&](std::size_t p) {
     for (int b = 0; b < k; ++b) {
       for (int a = 0; a < k; ++a) {
         const SecondDerivativeBounds M = split_bounds(cells[p], k, a, b);
-        estimate.grids[p * kk + static_cast<std::size_t>(a + k * b)] = grid_for_tolerance(M, eps, least_segments(M));
+        const std::size_t slot = p * kk + static_cast<std::size_t>(a + k * b);
+        estimate.grids[slot] = memos ? grid_for_tolerance(M, eps, least_segments(M), (*memos)[slot])
+                                     : grid_for_tolerance(M, eps, least_segments(M));
       }
     }
   });

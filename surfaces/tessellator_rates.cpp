@@ -84,6 +84,7 @@ void Tessellator::plan_patches() {
   const auto plan_piece = [&](std::size_t p) {
     PatchPlan& plan = plans_[p];
     plan.bounds = pieces_.bounds[p];
+    plan.memo = grid_memos_ ? &(*grid_memos_)[p] : nullptr;
     if (options_.segments) {
       plan.nu = plan.nv = *options_.segments;
       return;
@@ -104,7 +105,8 @@ void Tessellator::plan_patches() {
     GridSize grid{};
     try {
       grid = planned_ && reserve == 0.0 ? (*planned_)[p]
-                                        : grid_for_tolerance(plan.bounds, plan.tolerance, least_segments(plan.bounds));
+             : grid_memos_ ? grid_for_tolerance(plan.bounds, plan.tolerance, least_segments(plan.bounds), (*grid_memos_)[p])
+                           : grid_for_tolerance(plan.bounds, plan.tolerance, least_segments(plan.bounds));
     } catch (const InvalidInput&) {
       throw InvalidInput(detail::message("tessellate: piece ", p,
                                          " would need more than 2^20 segments per side at "

@@ -92,13 +92,16 @@ struct PatchPlan {
   int cell_nu = 0;
   int cell_nv = 0;
   double cell = 0.0;
+  // What earlier runs learnt about these bounds (Tessellator's grid_memos), or nullptr.
+  GridSearchMemo* memo = nullptr;
 
   // The bound of the grid cells of steps (1/nu, 1/nv).
   double cell_bound(int grid_nu, int grid_nv) {
     if (grid_nu != cell_nu || grid_nv != cell_nv) {
       cell_nu = grid_nu;
       cell_nv = grid_nv;
-      cell = flatness_bound(bounds, 1.0 / grid_nu, 1.0 / grid_nv, tolerance);
+      cell = memo ? flatness_bound(bounds, grid_nu, grid_nv, tolerance, *memo)
+                  : flatness_bound(bounds, 1.0 / grid_nu, 1.0 / grid_nv, tolerance);
     }
     return cell;
   }
@@ -266,6 +269,11 @@ struct VertexOrderScratch {
 
 // What a run needs besides its output, kept for the next run into the same Tessellation.
 struct TessellatorScratch {
+  // What the grid searches of a PreparedSurface's pieces learnt, for the next run: per split k
+  // (1, 2, 4) one memo per piece, valid for the prepared surface whose identity() is
+  // `memo_owner` (0: none).
+  std::uint64_t memo_owner = 0;
+  std::array<std::vector<GridSearchMemo>, 3> grid_memos;
   std::vector<PatchOutput> outputs;
   std::vector<Vec3> welded_positions;
   std::vector<VertexSource> sources;
@@ -342,12 +350,15 @@ class Tessellator {
   // already (tessellate(PatchSet) does, to choose the split).
   // `diagonal`, `solids`: in place of pieces.diagonal and pieces.solids (a PreparedSurface keeps
   // one set of pieces for either diagonal, and its solids apart, made on first use).
+  // `grid_memos`: one per piece, what earlier runs' grid searches learnt about its bounds (a
+  // PreparedSurface's per-frame call keeps them in the result's scratch); nullptr: none.
   Tessellator(const SurfacePieces& pieces, const TessellationOptions& options,
               const std::vector<GridSize>* planned = nullptr, std::optional<double> diagonal = std::nullopt,
-              const std::vector<std::int32_t>* solids = nullptr)
+              const std::vector<std::int32_t>* solids = nullptr, std::vector<GridSearchMemo>* grid_memos = nullptr)
       : pieces_(pieces),
         options_(options),
         planned_(planned),
+        grid_memos_(grid_memos),
         diagonal_(diagonal.value_or(pieces.diagonal)),
         solids_(solids != nullptr ? *solids : pieces.solids),
         count_(pieces.count),
@@ -355,6 +366,7 @@ class Tessellator {
         slots_(count_) {
     PATCHWORK_ASSERT(pieces.bounds.size() == count_, "one bound per piece");
     PATCHWORK_ASSERT(planned == nullptr || (planned->size() == count_ && !options.camera), "one grid per piece");
+    PATCHWORK_ASSERT(grid_memos == nullptr || grid_memos->size() == count_, "one grid memo per piece");
   }
 
   // Tessellates into `result`, reusing its arrays' storage. Without `keep_scratch` (a result
@@ -448,6 +460,7 @@ class Tessellator {
   const SurfacePieces& pieces_;
   const TessellationOptions& options_;
   const std::vector<GridSize>* planned_;
+  std::vector<GridSearchMemo>* grid_memos_;
   double diagonal_;
   const std::vector<std::int32_t>& solids_;
   std::size_t count_;
@@ -507,8 +520,9 @@ struct SplitEstimate {
 };
 
 /// The split estimate of `cells` at k x k and tolerance eps, on `threads` threads (0: all
-/// cores; the result does not depend on it). \throws InvalidInput as grid_for_tolerance does.
+/// cores; the result does not depend on it), with one grid memo per piece (k x k a patch, in
+/// the order of the split pieces) if `memos` is given. \throws InvalidInput as grid_for_tolerance does.
 SplitEstimate estimated_split(const std::vector<std::vector<SecondDerivativeBounds>>& cells, int k, double eps,
-                              int threads);
+                              int threads, std::vector<GridSearchMemo>* memos = nullptr);
 
 }  // namespace patchwork::detail

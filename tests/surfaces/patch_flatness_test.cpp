@@ -154,6 +154,31 @@ RC_GTEST_PROP(PatchFlatness, GridForToleranceIsTheSmallestThatMeetsTheBound, ())
   }
 }
 
+// A memo kept across a sequence of tolerances (coming back, alternating, finer and coarser, with
+// other least segments) answers every request with the grid the search without one finds, and
+// holds the cell bounds it was told: exact entries are the bound, the others below it.
+RC_GTEST_PROP(PatchFlatness, GridSearchMemoAnswersAsTheSearchWithoutIt, ()) {
+  const BezierPatch3 patch = *testing::random_patch(2, 4);
+  const SecondDerivativeBounds M = second_derivative_bounds(patch);
+  GridSearchMemo memo;
+  const auto tolerances = *rc::gen::container<std::vector<int>>(12, rc::gen::inRange(0, 6));
+  const double ladder[6] = {0.05, 0.07, 0.3, 0.31, 1.0, 4.0};
+  for (const int k : tolerances) {
+    const double tolerance = ladder[k];
+    const std::int64_t least = 1 + k % 2;
+    const GridSize with = grid_for_tolerance(M, tolerance, least, memo);
+    const GridSize without = grid_for_tolerance(M, tolerance, least);
+    RC_ASSERT(with.segments_u == without.segments_u);
+    RC_ASSERT(with.segments_v == without.segments_v);
+  }
+  RC_ASSERT(memo.answers.size() <= 2u);
+  for (const GridSearchMemo::CellBound& e : memo.cell_bounds) {
+    const double bound = flatness_bound(M, 1.0 / static_cast<double>(e.nu), 1.0 / static_cast<double>(e.nv));
+    // flatness_bound is the least of the quick and cell bounds: an exact entry is at least it.
+    RC_ASSERT(e.value >= bound || !e.exact);
+  }
+}
+
 TEST(PatchFlatness, ThirdAndFourthDifferencesOfABiquadratic) {
   // F = (u, v, u^2 v^2) in degree (2, 2): only P_22 has z = 1. F_uuv = 4v, F_uvv = 4u, F_uuvv = 4;
   // F_uuu, F_vvv and the other fourth derivatives vanish.

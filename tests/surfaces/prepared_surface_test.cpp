@@ -11,6 +11,7 @@
 #include "io/freeform_surfaces.h"
 #include "io/obj_freeform.h"
 #include "surfaces/patch_bounding_box.h"
+#include "surfaces/patch_transform.h"
 #include "tests/surfaces/patch_fixtures.h"
 #include "tests/surfaces/patch_set_fixtures.h"
 #include "tests/surfaces/tessellation_checks.h"
@@ -97,6 +98,28 @@ TEST(PreparedSurface, ReusedFrameAfterFrameEqualsAFreshTessellation) {
       ASSERT_GT(fresh.mesh.triangle_count(), 0u);
       testing::expect_identical_tessellations(reused, fresh);
       testing::expect_identical_tessellations(tessellate(prepared, frame.options), fresh);
+    }
+  }
+}
+
+// A result keeps what the grid searches learnt for the surface it was last made from, and only
+// for that one: one Tessellation reused across two prepared surfaces (and a prepared surface
+// made again at the address of one gone) gives each frame as a fresh tessellation.
+TEST(PreparedSurface, OneResultAcrossSurfacesKeepsNoOtherSurfacesMemos) {
+  // The teapot and the teapot a little larger: the same pieces and grids asked about, with
+  // other bounds, at the same absolute tolerances.
+  const PatchSet larger = transform(teapot(), Eigen::Affine3d(Eigen::Scaling(1.07))).set;
+  Tessellation reused;
+  const std::vector<TessellationOptions> options = {absolute(0.008), absolute(0.004), absolute(0.008),
+                                                    looking(teapot(), Vec3(0.73, -0.55, 0.49), BackFaceCulling::never)};
+  for (int round = 0; round < 2; ++round) {
+    const PreparedSurface teapot_prepared(teapot());
+    const PreparedSurface larger_prepared(larger);
+    for (const TessellationOptions& o : options) {
+      for (const auto* pair : {&teapot_prepared, &larger_prepared}) {
+        tessellate(*pair, o, reused);
+        testing::expect_identical_tessellations(reused, tessellate(pair->set(), o));
+      }
     }
   }
 }
