@@ -105,12 +105,47 @@ std::vector<CurveOverlap> merge_touching(std::vector<CurveOverlap> list, double 
   return result;
 }
 
+// The foot of q on curve by Newton from `guess`, kept in [lo, hi]: the branch nearest the guess
+// (project_onto samples the whole range first, and may pick another branch through q).
+template <int Dim>
+std::pair<double, double> project_near(const RationalBezierCurve<Dim>& curve, const Point<Dim>& q, double guess, double lo,
+                                       double hi) {
+  double s = std::clamp(guess, lo, hi);
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    const auto [C, d1, d2] = point_and_derivatives(curve, s);
+    const Point<Dim> r = C - q;
+    const double df = d2.dot(r) + d1.squaredNorm();
+    if (!(df > 0.0)) break;
+    const double next = std::clamp(s - d1.dot(r) / df, lo, hi);
+    const double step = std::abs(next - s);
+    s = next;
+    if (step <= 1e-16 * (curve.b() - curve.a())) break;
+  }
+  return {s, (curve.evaluate(s) - q).norm()};
+}
+
+// The foot of an end of `first` on `second`, on the side [lo, hi] the overlap continues to:
+// first from where the overlap's correspondence, carried on linearly, puts it; else sampled.
+template <int Dim>
+std::pair<double, double> continued_foot(const RationalBezierCurve<Dim>& second, const Point<Dim>& q, double guess,
+                                         double lo, double hi, double match) {
+  const auto near = project_near(second, q, guess, lo, hi);
+  return near.second <= match ? near : project_onto(second, q, lo, hi);
+}
+
 template <int Dim>
 CurveOverlap continued_overlap(CurveOverlap o, const RationalBezierCurve<Dim>& first,
                                const RationalBezierCurve<Dim>& second, double match) {
   const double direction = o.s1 > o.s0 ? 1.0 : -1.0;
+  // ds / dt along the overlap found, to carry the correspondence on to the curve's ends.
+  const double slope = o.t1 > o.t0 ? (o.s1 - o.s0) / (o.t1 - o.t0) : direction;
+  // Each end is looked for on the side the overlap continues to, nearest the correspondence (a
+  // search over the whole other curve can land on another branch of it through the same point,
+  // a loop's, and lose the overlap).
   if (o.t0 > first.a()) {
-    const auto [s, d] = project_onto(second, first.evaluate(first.a()), second.a(), second.b());
+    const double guess = o.s0 + slope * (first.a() - o.t0);
+    const auto [s, d] = direction > 0 ? continued_foot(second, first.evaluate(first.a()), guess, second.a(), o.s0, match)
+                                      : continued_foot(second, first.evaluate(first.a()), guess, o.s0, second.b(), match);
     const double end = direction > 0 ? second.a() : second.b();
     if (d <= match && (s - o.s0) * direction <= 0.0) {
       o.t0 = first.a(), o.s0 = s;
@@ -119,7 +154,9 @@ CurveOverlap continued_overlap(CurveOverlap o, const RationalBezierCurve<Dim>& f
     }
   }
   if (o.t1 < first.b()) {
-    const auto [s, d] = project_onto(second, first.evaluate(first.b()), second.a(), second.b());
+    const double guess = o.s1 + slope * (first.b() - o.t1);
+    const auto [s, d] = direction > 0 ? continued_foot(second, first.evaluate(first.b()), guess, o.s1, second.b(), match)
+                                      : continued_foot(second, first.evaluate(first.b()), guess, second.a(), o.s1, match);
     const double end = direction > 0 ? second.b() : second.a();
     if (d <= match && (s - o.s1) * direction >= 0.0) {
       o.t1 = first.b(), o.s1 = s;

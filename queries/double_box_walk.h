@@ -3,10 +3,10 @@
 // 4-wide float tree (queries/wide_bvh.h) declines the ray, which happens where the ray starts so
 // far out that floats cannot place it within the float boxes' pad.
 //
-// The slab test is conservative whatever the ray's distance: each slab parameter
-// (b - o) (1 / d) carries three roundings (gamma_3 relative, plus the least normal double where
-// it underflows), so the near end is moved down and the far end up by 4u of themselves before
-// they are compared (pbrt's argument, Pharr et al., 3rd ed., 3.9.2, on both ends).
+// The slab test is conservative whatever the ray's distance and direction: each slab parameter
+// (b - o) / d carries two roundings (gamma_2 relative, plus the least normal double where it
+// underflows), so the near end is moved down and the far end up by 4u of themselves before they
+// are compared (pbrt's argument, Pharr et al., 3rd ed., 3.9.2, on both ends).
 
 #include <cstdint>
 #include <vector>

@@ -146,7 +146,9 @@ bool settle_uncertified(const PatchSet& set, const Ray& ray, const detail::NetPi
                         std::vector<HitCandidate>& hits) {
   // Small in space (a wedge at a pole is small long before its parameter range is), or in
   // both parameters.
-  const bool tiny = detail::control_box(piece).diagonal().norm() <= resolution.tiny_piece ||
+  // The control box is widened by the rounding margin, which grows with depth and coordinates:
+  // its own size is what is compared (else a small scene far from the origin halves forever).
+  const bool tiny = detail::control_box(piece).diagonal().norm() <= resolution.tiny_piece + 4 * detail::rounding_margin(piece) ||
                     ((piece.u1 - piece.u0) <= 0x1p-30 && (piece.v1 - piece.v0) <= 0x1p-30);
   if (!tiny) return false;
   // Uncertified down to the smallest pieces: a tangent contact if the centre is on the ray.

@@ -260,13 +260,14 @@ bool krawczyk_excludes(const Nets& nets, const JacobianRanges& range, const Scal
 }
 
 // Newton on (g_1, g_2) = 0 in the piece's local parameters from its centre, where the values
-// are `at_centre`; the zero if it converges within the piece (widened by a hair, so a hit on the
+// are `at_centre`; the zero if it converges (a step below 1e-13) within the piece (widened by a hair, so a hit on the
 // piece's edge is found from either side).
 template <class Nets>
 bool local_newton(const Nets& nets, const ScalarValues& at_centre, double& s, double& t) {
   const double hair = 1e-9;
   s = t = 0.5;
   double previous_step = std::numeric_limits<double>::infinity();
+  bool converged = false;
   for (int iteration = 0; iteration < 20; ++iteration) {
     const ScalarValues g = iteration == 0 ? at_centre : scalar_derivatives(nets, s, t);
     const double det = g[0][1] * g[1][2] - g[0][2] * g[1][1];
@@ -277,7 +278,10 @@ bool local_newton(const Nets& nets, const ScalarValues& at_centre, double& s, do
     t -= dt;
     if (!(s > -0.25 && s < 1.25 && t > -0.25 && t < 1.25)) return false;
     const double step = std::abs(ds) + std::abs(dt);
-    if (step <= 1e-13) break;
+    if (step <= 1e-13) {
+      converged = true;
+      break;
+    }
     // Converging (the step at most a quarter of the last: what is left is then below a third of
     // the step, and quadratic convergence makes it far less) to a point outside the piece by
     // more than twice the step: no need to finish. Not a claim that there is no zero: false
@@ -286,7 +290,8 @@ bool local_newton(const Nets& nets, const ScalarValues& at_centre, double& s, do
     if (step <= 0.25 * previous_step && outside > 2 * step + hair) return false;
     previous_step = step;
   }
-  return s >= -hair && s <= 1 + hair && t >= -hair && t <= 1 + hair;
+  // Only a converged zero is one (20 steps without converging: a cycle, and halving decides).
+  return converged && s >= -hair && s <= 1 + hair && t >= -hair && t <= 1 + hair;
 }
 
 

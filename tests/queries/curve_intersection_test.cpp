@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <tuple>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "curves/flatness.h"
 #include "curves/subdivision.h"
 #include "queries/curve_intersection.h"
+#include "queries/self_intersection.h"
 #include "tests/queries/exact_root_count.h"
 
 namespace curve_intersection_test {
@@ -167,6 +169,49 @@ TEST(CurveIntersection, NearParallelCubicsCrossOnceAndDoNotOverlap) {
     EXPECT_LE(std::abs(x.s - 0.5), x.s_bound);
     EXPECT_LE(x.t_bound, 1.0 / 32);  // the pieces where they were found within rounding
   }
+}
+
+// Two pieces of one cubic with a loop, C(0.402237...) = C(0.654295...), sharing the parameters
+// [0.0776, 0.4022]: one overlap there, t = s. Continuing the overlap to the first piece's end
+// must look for that end on the side the overlap runs to: over the whole second piece, the
+// search landed on the loop's other branch (within 1e-9 of the end point) and the overlap was
+// lost, reported as one tangential point.
+TEST(CurveIntersection, OverlapEndingAtALoopsDoublePointIsKept) {
+  const BezierCurve2 curve({Vec2(-2.0031862781155656, 1.2283497731323942), Vec2(0.54777730620236031, -2.3245198209508788),
+                            Vec2(2.4784424437495041, 0.40872420347634808), Vec2(-2.8773805640349277, -1.4335636469810713)});
+  const double a = 0.0775976887, b = 0.402237358;
+  const auto result = intersect_curves(subcurve(curve, 0, b), subcurve(curve, a, 0.654295751));
+  ASSERT_EQ(result.overlaps.size(), 1u);
+  const CurveOverlap& o = result.overlaps[0];
+  EXPECT_NEAR(o.t0, a, 1e-9);
+  EXPECT_NEAR(o.t1, b, 1e-9);
+  EXPECT_NEAR(o.s0, a, 1e-9);
+  EXPECT_NEAR(o.s1, b, 1e-9);
+}
+
+// The same on random cubics with a loop: C on [0, b] against C on [a, s*], b the loop's t* or
+// within 1e-3 of it, is the one overlap [a, b] (t = s). (At ec63221, 67 of 348 such pairs of the
+// seed below lost the overlap.)
+TEST(CurveIntersection, OverlapsOfPiecesOfLoopedCubicsAreKept) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coordinate(-3, 3), fraction(0.1, 0.6), jitter(-1e-3, 1e-3);
+  int tried = 0;
+  for (int k = 0; k < 3000 && tried < 60; ++k) {
+    const BezierCurve2 curve({Vec2(coordinate(rng), coordinate(rng)), Vec2(coordinate(rng), coordinate(rng)),
+                              Vec2(coordinate(rng), coordinate(rng)), Vec2(coordinate(rng), coordinate(rng))});
+    const auto loop = self_intersections(curve);
+    if (loop.points.size() != 1) continue;
+    const double t = loop.points[0].t, s = loop.points[0].s;
+    const double a = t * fraction(rng), b = tried % 2 == 0 ? t : t * (1 + jitter(rng));
+    ++tried;
+    const auto result = intersect_curves(subcurve(curve, 0, b), subcurve(curve, a, s));
+    const bool found = std::any_of(result.overlaps.begin(), result.overlaps.end(), [&](const CurveOverlap& o) {
+      return std::abs(o.t0 - a) < 1e-6 && std::abs(o.t1 - b) < 1e-6 && std::abs(o.s0 - a) < 1e-6 && std::abs(o.s1 - b) < 1e-6;
+    });
+    EXPECT_TRUE(found) << "t* = " << t << ", s* = " << s << ", a = " << a << ", b = " << b << ": " << result.overlaps.size()
+                       << " overlaps";
+  }
+  EXPECT_EQ(tried, 60);
 }
 
 TEST(CurveIntersection, CurveAgainstItsOwnPieceIsOneOverlap) {

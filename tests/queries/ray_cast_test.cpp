@@ -207,6 +207,28 @@ TEST(RayCast, TeapotAgainstTheTessellatedMesh) {
   EXPECT_GE(compared, 25);
 }
 
+// A small scene far from the origin: the pieces' boxes are widened by a rounding margin that
+// grows with their coordinates and depth, larger than the scene's resolution; a piece is tiny by
+// its own size. (Compared widened, such pieces halved until memory ran out: std::bad_alloc.)
+TEST(RayCast, SmallSceneFarFromTheOriginSettles) {
+  for (const double scale : {1e-5, 1e-6}) {
+    const PatchSet set = set_from(nurbs_torus(Vec3(100, 37, -61), 2.0 * scale, 0.75 * scale));
+    const PatchBvh bvh(set);
+    // A ray through the tube, and the reviewer's rays that grazed it.
+    const Vec3 o(100 + 2.0 * scale, 37, -61 - 5 * scale);
+    const RayHits through = ray_cast(bvh, o, Vec3(0, 0, 1));
+    ASSERT_EQ(through.hits.size(), 2u) << scale;
+    EXPECT_NEAR(through.hits[0].point.z(), -61 - 0.75 * scale, 1e-9 * scale);
+    EXPECT_NEAR(through.hits[1].point.z(), -61 + 0.75 * scale, 1e-9 * scale);
+    const Vec3 grazing_o = scale == 1e-5 ? Vec3(99.999926760337218, 36.999928083914291, -60.999995777250646)
+                                         : Vec3(99.999991561565267, 36.999996116163899, -61.000006350084853);
+    const Vec3 grazing_d = scale == 1e-5 ? Vec3(5.9286262342084228e-05, 7.1098243175526932e-05, 2.1943854804362672e-06)
+                                         : Vec3(6.3669138938848846e-06, 1.6421924371456953e-06, 6.2667744060718178e-06);
+    const RayHits grazing = ray_cast(bvh, grazing_o, grazing_d);
+    EXPECT_LE(grazing.pieces, 100000) << scale;
+  }
+}
+
 TEST(RayCast, LimitsAndBadInput) {
   const PatchBvh bvh(sphere());
   const Vec3 o(0.25, -0.5, -5.0), d(0, 0, 1);
