@@ -326,12 +326,14 @@ TEST(RayCast, RaysFromFarAwayHitWhatTheyAimAt) {
   int aimed = 0;
   for (std::uint32_t p = 0; p < teapot().count(); ++p) {
     const AnyBezierPatch patch = teapot().patch(p);
-    const auto [target, normal] = std::visit(
+    // Plain variables, not a structured binding: lambdas below capture them (clang 14).
+    const std::pair<Vec3, Vec3> at = std::visit(
         [&](const auto& f) {
           const auto D = partial_derivatives(f, 0.37, 0.61, 1);
           return std::pair<Vec3, Vec3>{Vec3(D.at(0, 0)), Vec3(D.at(1, 0)).cross(Vec3(D.at(0, 1))).normalized()};
         },
         patch);
+    const Vec3 target = at.first, normal = at.second;
     const Vec3 towards = Vec3(std::cos(1.7 * p), std::sin(1.7 * p), 0.3 * std::cos(0.3 * p)).normalized();
     if (!(std::abs(towards.dot(normal)) > 0.2)) continue;
     for (const double far : {1e3, 1e6, 1e9, 1e12}) {
