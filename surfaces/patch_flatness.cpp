@@ -613,7 +613,7 @@ bool cell_bound_meets(const DirectionalBounds& d, std::int64_t nu, std::int64_t 
   const auto entry = std::find_if(known.begin(), known.end(), [&](const auto& e) { return e.nu == nu && e.nv == nv; });
   if (entry == known.end()) {
     const double value = grid_cell_bound(d, du, dv, tolerance);
-    known.push_back({nu, nv, value, value <= tolerance});
+    if (known.size() < GridSearchMemo::most_cell_bounds) known.push_back({nu, nv, value, value <= tolerance});
     return value <= tolerance;
   }
   if (entry->exact) return entry->value <= tolerance;
@@ -716,6 +716,7 @@ double flatness_bound(const SecondDerivativeBounds& M, std::int64_t nu, std::int
   auto& known = memo.cell_bounds;
   auto entry = std::find_if(known.begin(), known.end(), [&](const auto& e) { return e.nu == nu && e.nv == nv; });
   if (entry == known.end()) {
+    if (known.size() >= GridSearchMemo::most_cell_bounds) return std::min(quick, grid_cell_bound(*M.directions, du, dv));
     known.push_back({nu, nv, 0.0, false});
     entry = known.end() - 1;
   }

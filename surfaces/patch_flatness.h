@@ -168,7 +168,10 @@ struct GridSearchMemo {
     /// value is the cell bound itself; else the bound is at least value.
     bool exact;
   };
+  /// At most most_cell_bounds of them (the first asked for; later grids are computed each
+  /// time), so that a camera whose tolerances drift for ever does not grow the memo for ever.
   std::vector<CellBound> cell_bounds;
+  static constexpr std::size_t most_cell_bounds = 64;
   struct Answer {
     double tolerance;
     std::int64_t min_segments;

@@ -172,6 +172,7 @@ RC_GTEST_PROP(PatchFlatness, GridSearchMemoAnswersAsTheSearchWithoutIt, ()) {
     RC_ASSERT(with.segments_v == without.segments_v);
   }
   RC_ASSERT(memo.answers.size() <= 2u);
+  RC_ASSERT(memo.cell_bounds.size() <= GridSearchMemo::most_cell_bounds);
   for (const GridSearchMemo::CellBound& e : memo.cell_bounds) {
     const double bound = flatness_bound(M, 1.0 / static_cast<double>(e.nu), 1.0 / static_cast<double>(e.nv));
     // flatness_bound is the least of the quick and cell bounds: an exact entry is at least it.
