@@ -15,8 +15,10 @@
 // What a tessellation then costs is what its options change: the split choice and the grid of
 // every piece at the tolerance (with a camera: each patch's tolerance and whether it is culled),
 // the rates of the shared edges and the stitched patterns, the evaluation into the output, the
-// vertex order. Nothing is kept from one tessellation for the next but the storage of the
-// Tessellation passed in again (tessellate(prepared, options, result)).
+// vertex order. Nothing is kept from one tessellation for the next but what the Tessellation
+// passed in again holds (tessellate(prepared, options, result)): its storage, and its grid memos
+// (surfaces/patch_flatness.h), which name this surface by identity() and give the same grids as
+// a search without them.
 //
 // A PreparedSurface refers to its PatchSet, which must outlive it. Tessellating does not change
 // what it has made; what it makes on first use is made once, under a lock (an exception while

@@ -172,6 +172,13 @@ RC_GTEST_PROP(PatchFlatness, GridSearchMemoAnswersAsTheSearchWithoutIt, ()) {
     RC_ASSERT(with.segments_v == without.segments_v);
   }
   RC_ASSERT(memo.answers.size() <= 2u);
+  // flatness_bound through the memo, on every grid the searches tried (stopped ones included,
+  // whose known value is only a lower one): the value without a memo, bit for bit.
+  const std::vector<GridSearchMemo::CellBound> tried = memo.cell_bounds;
+  for (const GridSearchMemo::CellBound& e : tried) {
+    const double direct = flatness_bound(M, 1.0 / static_cast<double>(e.nu), 1.0 / static_cast<double>(e.nv), 0.0);
+    RC_ASSERT(flatness_bound(M, e.nu, e.nv, 0.0, memo) == direct);
+  }
   RC_ASSERT(memo.cell_bounds.size() <= GridSearchMemo::most_cell_bounds);
   for (const GridSearchMemo::CellBound& e : memo.cell_bounds) {
     const double bound = flatness_bound(M, 1.0 / static_cast<double>(e.nu), 1.0 / static_cast<double>(e.nv));

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -113,13 +116,69 @@ TEST(PreparedSurface, OneResultAcrossSurfacesKeepsNoOtherSurfacesMemos) {
   const std::vector<TessellationOptions> options = {absolute(0.008), absolute(0.004), absolute(0.008),
                                                     looking(teapot(), Vec3(0.73, -0.55, 0.49), BackFaceCulling::never)};
   for (int round = 0; round < 2; ++round) {
-    const PreparedSurface teapot_prepared(teapot());
-    const PreparedSurface larger_prepared(larger);
+    // Made in the other order the second time: each may take the address the other had.
+    std::optional<PreparedSurface> first, second;
+    if (round == 0) {
+      first.emplace(teapot()), second.emplace(larger);
+    } else {
+      second.emplace(larger), first.emplace(teapot());
+    }
     for (const TessellationOptions& o : options) {
-      for (const auto* pair : {&teapot_prepared, &larger_prepared}) {
+      for (const PreparedSurface* pair : {&*first, &*second}) {
         tessellate(*pair, o, reused);
         testing::expect_identical_tessellations(reused, tessellate(pair->set(), o));
       }
+    }
+  }
+}
+
+// A long frame sequence through one result, so that what one frame's searches learnt is used by
+// later ones: tolerances drifting up and down by a few percent (relative and absolute), coming
+// back, a camera circling with a drifting pixel tolerance, split on and off, uniform grids
+// between (a stitched pattern's cell bound asked for after a search stopped on that grid), on
+// the teapot and on a teapot whose edges join with weld gaps (the planning reserves them). Each
+// frame equals a fresh tessellation.
+TEST(PreparedSurface, DriftingFramesThroughOneResultEqualFreshTessellations) {
+  std::vector<BezierPatch3> noisy = teapot().patches();
+  for (std::size_t p = 0; p < noisy.size(); ++p) {
+    std::vector<Vec3> points = noisy[p].control_points();
+    for (std::size_t k = 0; k < points.size(); ++k) points[k] += 2e-5 * Vec3(std::sin(7.0 * p + k), std::cos(3.0 * k + p), std::sin(1.0 * k * p));
+    noisy[p] = BezierPatch3(noisy[p].degree_u(), noisy[p].degree_v(), points);
+  }
+  const PatchSet gapped(noisy, 1e-4);
+  ASSERT_EQ(gapped.shared_edges().size(), teapot().shared_edges().size());  // joined, with gaps
+#ifdef PATCHWORK_ENABLE_ASSERTS
+  const int count = 40;  // the sanitizer build: fewer frames, the same kinds
+#else
+  const int count = 160;
+#endif
+  for (const PatchSet* set : {&teapot(), &gapped}) {
+    const PreparedSurface prepared(*set);
+    Tessellation reused;
+    double r = 1e-3;
+    for (int frame = 0; frame < count; ++frame) {
+      TessellationOptions o;
+      const int kind = frame % 8;
+      r *= 1.0 + 0.06 * std::sin(1.3 * frame);  // drifting, coming back
+      r = std::clamp(r, 2e-4, 3e-2);
+      if (kind < 3) {
+        o = relative(r);
+      } else if (kind == 3) {
+        o = absolute(8.2 * r);
+      } else if (kind == 4) {
+        o.segments = 1 + frame % 6;
+      } else if (kind == 5) {
+        o = relative(r);
+        o.split_patches = false;
+      } else {
+        o = looking(*set, Vec3(std::cos(0.05 * frame), std::sin(0.05 * frame), 0.5), BackFaceCulling::never);
+        o.pixel_tolerance = 0.5 + 0.4 * std::sin(0.7 * frame);
+      }
+      o.measure = false;
+      SCOPED_TRACE("frame " + std::to_string(frame) + (set == &teapot() ? " (teapot)" : " (gapped)"));
+      tessellate(prepared, o, reused);
+      testing::expect_identical_tessellations(reused, tessellate(*set, o));
+      if (::testing::Test::HasFailure()) return;
     }
   }
 }
