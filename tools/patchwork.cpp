@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -190,6 +192,12 @@ int main(int argc, char** argv) {
     if (subdivide->parsed()) patchwork::tools::run_subdivide(std::cout, std::cerr, sub);
     if (tessellate->parsed()) {
       tess.show_progress = ::isatty(STDERR_FILENO) != 0;
+      // A number of seconds, or the default where it is absent or not one.
+      if (const char* after = std::getenv("PATCHWORK_PROGRESS_AFTER")) {
+        char* end = nullptr;
+        const double seconds = std::strtod(after, &end);
+        if (end != after && *end == '\0' && std::isfinite(seconds) && seconds >= 0.0) tess.progress_after = seconds;
+      }
       patchwork::tools::run_tessellate(std::cout, std::cerr, tess);
     }
   } catch (const patchwork::ParseError& error) {

@@ -174,7 +174,7 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
 
   // Progress once the run has taken a second, each stage as it ends (issue: long scenes).
   const auto report_progress = [&](const std::string& what) {
-    if (arguments.show_progress && elapsed() > 1.0) progress << "patchwork: " << what << " (" << elapsed() << " s)" << std::endl;
+    if (arguments.show_progress && elapsed() > arguments.progress_after) progress << "patchwork: " << what << " (" << elapsed() << " s)" << std::endl;
   };
   const PatchSet set = read_patch_set(arguments.input);
   report_progress(detail::message("read ", arguments.input, ": ", set.count(), " patches; tessellating"));

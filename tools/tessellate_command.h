@@ -57,6 +57,9 @@ struct TessellateArguments {
   /// written) on the progress stream: the CLI sets it when stderr is a terminal, so that logs
   /// and pipes stay quiet.
   bool show_progress = false;
+  /// Seconds into the run before stages are shown (the CLI takes PATCHWORK_PROGRESS_AFTER from
+  /// the environment, 1 without it: a test sets 0 to see every stage of a short run).
+  double progress_after = 1.0;
 };
 
 /// Runs the command; the summary goes to `out`; warnings, and progress for long runs when
