@@ -604,14 +604,21 @@ namespace {
 // exceeds the tolerance); asked again where that value does not decide, its whole bound is kept. grid_cell_bound(d, du, dv, stop) returns the bound itself when it is at most
 // stop, and otherwise a value above stop that the bound is at least: either way the comparison
 // with the tolerance is that of the bound itself, so the memo's answers are the direct ones.
+// The memo's entry of the nu x nv grid, or nullptr.
+GridSearchMemo::CellBound* known_cell_bound(GridSearchMemo& memo, std::int64_t nu, std::int64_t nv) {
+  auto& known = memo.cell_bounds;
+  const auto entry = std::find_if(known.begin(), known.end(), [&](const auto& e) { return e.nu == nu && e.nv == nv; });
+  return entry == known.end() ? nullptr : &*entry;
+}
+
 bool cell_bound_meets(const DirectionalBounds& d, std::int64_t nu, std::int64_t nv, double tolerance,
                       GridSearchMemo* memo) {
   const double du = 1.0 / static_cast<double>(nu);
   const double dv = 1.0 / static_cast<double>(nv);
   if (!memo) return grid_cell_bound(d, du, dv, tolerance) <= tolerance;
   auto& known = memo->cell_bounds;
-  const auto entry = std::find_if(known.begin(), known.end(), [&](const auto& e) { return e.nu == nu && e.nv == nv; });
-  if (entry == known.end()) {
+  GridSearchMemo::CellBound* entry = known_cell_bound(*memo, nu, nv);
+  if (!entry) {
     const double value = grid_cell_bound(d, du, dv, tolerance);
     if (known.size() < GridSearchMemo::most_cell_bounds) known.push_back({nu, nv, value, value <= tolerance});
     return value <= tolerance;
@@ -714,11 +721,10 @@ double flatness_bound(const SecondDerivativeBounds& M, std::int64_t nu, std::int
   const double quick = quick_grid_bound(M, du, dv);
   if (quick <= good_enough || !M.directions) return quick;
   auto& known = memo.cell_bounds;
-  auto entry = std::find_if(known.begin(), known.end(), [&](const auto& e) { return e.nu == nu && e.nv == nv; });
-  if (entry == known.end()) {
+  GridSearchMemo::CellBound* entry = known_cell_bound(memo, nu, nv);
+  if (!entry) {
     if (known.size() >= GridSearchMemo::most_cell_bounds) return std::min(quick, grid_cell_bound(*M.directions, du, dv));
-    known.push_back({nu, nv, 0.0, false});
-    entry = known.end() - 1;
+    entry = &known.emplace_back(GridSearchMemo::CellBound{nu, nv, 0.0, false});
   }
   if (!entry->exact) {
     // The whole bound: grid_cell_bound without a stop, as flatness_bound takes it.
