@@ -599,11 +599,6 @@ double sampled_grid_distance(const BezierPatch3& patch, std::int64_t nu, std::in
 
 namespace {
 
-// Whether the cell bound of the nu x nv grid is at most `tolerance`, from the memo's value where
-// that decides it. A grid asked about first is tested as without a memo (stopping once a box
-// exceeds the tolerance); asked again where that value does not decide, its whole bound is kept. grid_cell_bound(d, du, dv, stop) returns the bound itself when it is at most
-// stop, and otherwise a value above stop that the bound is at least: either way the comparison
-// with the tolerance is that of the bound itself, so the memo's answers are the direct ones.
 // The memo's entry of the nu x nv grid, or nullptr.
 GridSearchMemo::CellBound* known_cell_bound(GridSearchMemo& memo, std::int64_t nu, std::int64_t nv) {
   auto& known = memo.cell_bounds;
@@ -611,6 +606,12 @@ GridSearchMemo::CellBound* known_cell_bound(GridSearchMemo& memo, std::int64_t n
   return entry == known.end() ? nullptr : &*entry;
 }
 
+// Whether the cell bound of the nu x nv grid is at most `tolerance`, from the memo's value where
+// that decides it. A grid asked about first is tested as without a memo (stopping once a box
+// exceeds the tolerance); asked again where that value does not decide, its whole bound is kept.
+// grid_cell_bound(d, du, dv, stop) returns the bound itself when it is at most stop, and
+// otherwise a value above stop that the bound is at least: either way the comparison with the
+// tolerance is that of the bound itself, so the memo's answers are the direct ones.
 bool cell_bound_meets(const DirectionalBounds& d, std::int64_t nu, std::int64_t nv, double tolerance,
                       GridSearchMemo* memo) {
   const double du = 1.0 / static_cast<double>(nu);
