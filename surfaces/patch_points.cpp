@@ -74,52 +74,100 @@ DegeneracyThresholds degeneracy_thresholds(int n, int m, double scale) {
 
 namespace {
 
-// F, F_u and F_v for degrees (N, M), both at most 3: the Bernstein sums unrolled at compile
-// time, in plain doubles (Eigen's small-vector expressions were not inlined here).
-template <int N, int M>
-void fixed_sums(const std::vector<Vec3>& P, double u, double v, Vec3& f, Vec3& fu, Vec3& fv) {
-  std::array<double, N + 1> bu;
-  std::array<double, N + 1> dbu;
-  std::array<double, M + 1> bv;
-  std::array<double, M + 1> dbv;
-  detail::bernstein_values_and_derivatives(N, u, bu.data(), dbu.data());
-  detail::bernstein_values_and_derivatives(M, v, bv.data(), dbv.data());
-  double point[3] = {0.0, 0.0, 0.0};
-  double du[3] = {0.0, 0.0, 0.0};
-  double dv[3] = {0.0, 0.0, 0.0};
-  for (int i = 0; i <= N; ++i) {
+// The Bernstein sums of F, F_u and F_v for degrees (N, M), both at most 3, unrolled at compile
+// time in plain doubles (Eigen's small-vector expressions were not inlined here), in two steps:
+// the net's lines summed across at one parameter t (line_sums: rows i at t = v, or columns j at
+// t = u), then the lines along the other parameter s (sums_along). fixed_sums takes the rows;
+// samples along a side share their first step (evaluate_samples_fixed).
+template <int Lines>
+struct LineSums {
+  std::array<std::array<double, 3>, Lines> q;   // each line summed with B_k(t)
+  std::array<std::array<double, 3>, Lines> dq;  // and with B_k'(t)
+};
+
+// Rows (Rows = true: line i = P_i0 .. P_iM, t = v) or columns (line j = P_0j .. P_Nj, t = u).
+template <int N, int M, bool Rows, int Lines = Rows ? N + 1 : M + 1, int Across = Rows ? M : N>
+LineSums<Lines> line_sums(const std::vector<Vec3>& P, double t) {
+  std::array<double, Across + 1> b;
+  std::array<double, Across + 1> db;
+  detail::bernstein_values_and_derivatives(Across, t, b.data(), db.data());
+  LineSums<Lines> lines;
+  for (int l = 0; l < Lines; ++l) {
     double q[3] = {0.0, 0.0, 0.0};
     double dq[3] = {0.0, 0.0, 0.0};
-    for (int j = 0; j <= M; ++j) {
+    for (int k = 0; k <= Across; ++k) {
+      const int i = Rows ? l : k;
+      const int j = Rows ? k : l;
       const double* c = P[static_cast<std::size_t>(i + (N + 1) * j)].data();
-      const double b = bv[static_cast<std::size_t>(j)];
-      const double db = dbv[static_cast<std::size_t>(j)];
       for (int x = 0; x < 3; ++x) {
-        q[x] += b * c[x];
-        dq[x] += db * c[x];
+        q[x] += b[static_cast<std::size_t>(k)] * c[x];
+        dq[x] += db[static_cast<std::size_t>(k)] * c[x];
       }
     }
-    const double b = bu[static_cast<std::size_t>(i)];
-    const double db = dbu[static_cast<std::size_t>(i)];
-    for (int x = 0; x < 3; ++x) {
-      point[x] += b * q[x];
-      du[x] += db * q[x];
-      dv[x] += b * dq[x];
+    for (std::size_t x = 0; x < 3; ++x) {
+      lines.q[static_cast<std::size_t>(l)][x] = q[x];
+      lines.dq[static_cast<std::size_t>(l)][x] = dq[x];
+    }
+  }
+  return lines;
+}
+
+// F = sum_l B_l(s) q_l, its derivative along the lines' parameter s and across (from dq).
+template <int Lines>
+void sums_along(const LineSums<Lines>& lines, double s, Vec3& f, Vec3& along, Vec3& across) {
+  std::array<double, Lines> b;
+  std::array<double, Lines> db;
+  detail::bernstein_values_and_derivatives(Lines - 1, s, b.data(), db.data());
+  double point[3] = {0.0, 0.0, 0.0};
+  double ds[3] = {0.0, 0.0, 0.0};
+  double dt[3] = {0.0, 0.0, 0.0};
+  for (std::size_t l = 0; l < static_cast<std::size_t>(Lines); ++l) {
+    for (std::size_t x = 0; x < 3; ++x) {
+      point[x] += b[l] * lines.q[l][x];
+      ds[x] += db[l] * lines.q[l][x];
+      dt[x] += b[l] * lines.dq[l][x];
     }
   }
   f = Vec3(point[0], point[1], point[2]);
-  fu = Vec3(du[0], du[1], du[2]);
-  fv = Vec3(dv[0], dv[1], dv[2]);
+  along = Vec3(ds[0], ds[1], ds[2]);
+  across = Vec3(dt[0], dt[1], dt[2]);
 }
 
-// evaluate_samples for degrees (N, M), both at most 3.
+template <int N, int M>
+void fixed_sums(const std::vector<Vec3>& P, double u, double v, Vec3& f, Vec3& fu, Vec3& fv) {
+  sums_along<N + 1>(line_sums<N, M, true>(P, v), u, f, fu, fv);
+}
+
+// evaluate_samples for degrees (N, M), both at most 3. A tessellated piece's boundary points
+// come side by side: a run of samples with one v (a side along u) shares its row sums, a run
+// with one u its column sums, so a side's point costs about half a lone point.
 template <int N, int M>
 void evaluate_samples_fixed(const BezierPatch3& patch, std::span<const Vec2> uvs, GridSamplesView out, double threshold,
                             double derivative_threshold) {
-  for (std::size_t k = 0; k < uvs.size(); ++k) {
+  const std::vector<Vec3>& P = patch.control_points();
+  const auto run_end = [&](std::size_t k, int axis) {
+    std::size_t end = k + 1;
+    while (end < uvs.size() && uvs[end][axis] == uvs[k][axis]) ++end;
+    return end;
+  };
+  std::size_t k = 0;
+  while (k < uvs.size()) {
     Vec3 point, du, dv;
-    fixed_sums<N, M>(patch.control_points(), uvs[k].x(), uvs[k].y(), point, du, dv);
-    detail::store_sample(patch, uvs[k].x(), uvs[k].y(), point, du, dv, threshold, derivative_threshold, k, out);
+    const std::size_t same_v = run_end(k, 1);
+    const std::size_t same_u = same_v == k + 1 ? run_end(k, 0) : k + 1;
+    if (same_u > k + 1) {
+      const LineSums<M + 1> columns = line_sums<N, M, false>(P, uvs[k].x());
+      for (; k < same_u; ++k) {
+        sums_along<M + 1>(columns, uvs[k].y(), point, dv, du);
+        detail::store_sample(patch, uvs[k].x(), uvs[k].y(), point, du, dv, threshold, derivative_threshold, k, out);
+      }
+      continue;
+    }
+    const LineSums<N + 1> rows = line_sums<N, M, true>(P, uvs[k].y());
+    for (; k < same_v; ++k) {
+      sums_along<N + 1>(rows, uvs[k].x(), point, du, dv);
+      detail::store_sample(patch, uvs[k].x(), uvs[k].y(), point, du, dv, threshold, derivative_threshold, k, out);
+    }
   }
 }
 

@@ -21,18 +21,30 @@ namespace patchwork::detail {
 // get the grid's bound `cell` (flatness_bound, which bounds either half of any cell of those steps); a
 // triangle whose own bound exceeds the tolerance is refined on `surface`
 // (refined_triangle_flatness_bound), so that a stitched triangle is not raised for want of a
-// tighter bound.
-double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeBounds& bounds, int nu, int nv,
+// tighter bound. The inner cells that make_pattern_boundary leaves out are such halves: they
+// count as `cell` without being listed.
+double pattern_bound(const TessellationPattern& boundary, const InnerGrid& inner, const SecondDerivativeBounds& bounds,
                      double cell, const std::function<Vec3(const Vec2&)>& surface, double tolerance) {
-  if (pattern.grid) return cell;
-  const double du = 1.0 / nu;
-  const double dv = 1.0 / nv;
-  const double aspect = static_cast<double>(nu) / nv;
-  double bound = 0.0;
-  for (const Triangle& t : pattern.triangles) {
-    const Vec2& a = pattern.points[t[0]].uv;
-    const Vec2& b = pattern.points[t[1]].uv;
-    const Vec2& c = pattern.points[t[2]].uv;
+  if (boundary.grid) return cell;
+  const double du = 1.0 / inner.u;
+  const double dv = 1.0 / inner.v;
+  const double aspect = static_cast<double>(inner.u) / inner.v;
+  const auto points = static_cast<std::uint32_t>(boundary.points.size());
+  const auto row = static_cast<std::uint32_t>(inner.u - 1);
+  // Point k's (u, v): listed, or interior point k - points on the inner grid (as make_pattern
+  // places it, i / N_u and j / N_v).
+  const auto uv = [&](std::uint32_t k) {
+    if (k < points) return boundary.points[k].uv;
+    const std::uint32_t q = k - points;
+    return Vec2(static_cast<double>(q % row + 1) / static_cast<double>(inner.u),
+                static_cast<double>(q / row + 1) / static_cast<double>(inner.v));
+  };
+  const bool inner_cells = inner.u > 2 && inner.v > 2;
+  double bound = inner_cells ? cell : 0.0;
+  for (const Triangle& t : boundary.triangles) {
+    const Vec2 a = uv(t[0]);
+    const Vec2 b = uv(t[1]);
+    const Vec2 c = uv(t[2]);
     if (is_grid_cell_half(a, b, c, du, dv)) {
       bound = std::max(bound, cell);
       continue;
@@ -340,8 +352,10 @@ double Tessellator::pattern_bound_of(std::uint32_t p, const PatternRates& r) {
   const InnerGrid inner = inner_grid(r);
   const auto surface = [this, p](const Vec2& uv) { return pieces_.evaluate(p, uv.x(), uv.y()); };
   const double target = options_.segments ? std::numeric_limits<double>::infinity() : plan.tolerance;
-  return pattern_bound(make_pattern(r), plan.bounds, inner.u, inner.v, plan.cell_bound(inner.u, inner.v), surface,
-                       target);
+  // Each thread's pattern keeps its storage from call to call.
+  thread_local TessellationPattern boundary;
+  make_pattern_boundary(r, boundary);
+  return pattern_bound(boundary, inner, plan.bounds, plan.cell_bound(inner.u, inner.v), surface, target);
 }
 
 void Tessellator::check_triangle_budget() const {

@@ -325,10 +325,10 @@ inline bool is_grid_cell_half(const Vec2& a, const Vec2& b, const Vec2& c, doubl
   return has(low.x(), low.y()) && has(high.x(), high.y()) && (has(high.x(), low.y()) || has(low.x(), high.y()));
 }
 
-// The a-priori bound of every triangle of a pattern, the largest (the halves of inner grid cells
-// get the grid's bound `cell`; a triangle whose own bound exceeds the tolerance is refined on
-// `surface`).
-double pattern_bound(const TessellationPattern& pattern, const SecondDerivativeBounds& bounds, int nu, int nv,
+// The a-priori bound of every triangle of a pattern given by its boundary part
+// (make_pattern_boundary) and inner grid, the largest (the halves of inner grid cells get the
+// grid's bound `cell`; a triangle whose own bound exceeds the tolerance is refined on `surface`).
+double pattern_bound(const TessellationPattern& boundary, const InnerGrid& inner, const SecondDerivativeBounds& bounds,
                      double cell, const std::function<Vec3(const Vec2&)>& surface, double tolerance);
 
 // --- tessellator_measure.cpp: the measured error ---------------------------------------------
