@@ -205,11 +205,16 @@ void make_pattern_boundary(const PatternRates& rates, TessellationPattern& patte
 
   // One stitched strip per other side, joining its edge points to the grid cells' outermost
   // points along it (which reach the corners' neighbours on the sides that keep their ring).
+  // Each thread's rows keep their storage from side to side and call to call (a frame makes
+  // thousands of patterns).
+  thread_local std::vector<std::uint32_t> outer;
+  thread_local std::vector<double> along;
+  thread_local std::vector<std::uint32_t> inner_row;
   for (int side = 0; side < 4; ++side) {
     if (matches(side)) continue;
     const int e = rates.edges[side];
-    std::vector<std::uint32_t> outer{index.corner(side)};
-    std::vector<double> along{0.0};
+    outer.assign(1, index.corner(side));
+    along.assign(1, 0.0);
     // Counter-clockwise: v0 and u1 run with their boundary_curve, v1 and u0 against it.
     for (int k = 1; k < e; ++k) {
       outer.push_back(index.edge(side, side < 2 ? k : e - k));
@@ -217,7 +222,7 @@ void make_pattern_boundary(const PatternRates& rates, TessellationPattern& patte
     }
     outer.push_back(index.corner((side + 1) % 4));
     along.push_back(1.0);
-    std::vector<std::uint32_t> inner_row;
+    inner_row.clear();
     int offset = 0;  // the first inner point's step along the side
     switch (side) {
       case 0:

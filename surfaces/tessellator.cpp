@@ -46,8 +46,9 @@ void Tessellator::run(Tessellation& result, bool keep_scratch) {
   // again and again then allocates next to nothing).
   outputs_ = &result.scratch.get().outputs;
   outputs_->resize(count_);
+  parallel_for(count_, options_.threads, [&](std::size_t p) { (*outputs_)[p].clear(); });
+  assign_patterns(result.scratch.get().patterns);
   parallel_for(count_, options_.threads, [&](std::size_t p) {
-    (*outputs_)[p].clear();
     if (!plans_[p].culled) tessellate_patch(static_cast<std::uint32_t>(p));
   });
   assemble(result);

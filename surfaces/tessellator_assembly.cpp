@@ -117,14 +117,14 @@ void Tessellator::assemble(Tessellation& result) {
     out.vertex.assign(out.boundary_points(), no_id);
     const auto vertex = [&](std::uint32_t k) {
       const std::uint32_t id = out.welded[k];
-      const Vec2 uv = with_uv ? uv_of(p, out.pattern.points[k].uv) : Vec2::Zero();
+      const Vec2 uv = with_uv ? uv_of(p, out.pattern->points[k].uv) : Vec2::Zero();
       std::uint32_t& head = pole[id] != 0 ? heads.head(id, uv) : first_vertex[id];
       for (std::uint32_t v = head; v != no_id; v = next_vertex[v]) {
         const PatchOutput& other = (*outputs_)[sources[v].patch];
         const std::uint32_t j = sources[v].point;
         const bool same =
             other.normals[j].dot(out.normals[k]) >= cos_crease &&
-            (!with_uv || uv_of(sources[v].patch, other.pattern.points[j].uv) == uv) &&
+            (!with_uv || uv_of(sources[v].patch, other.pattern->points[j].uv) == uv) &&
             (!options_.tangents || (other.tangents[j].w() == out.tangents[k].w() &&
                                     other.tangents[j].head<3>().dot(out.tangents[k].head<3>()) >= cos_crease));
         if (same) return v;
@@ -136,7 +136,7 @@ void Tessellator::assemble(Tessellation& result) {
       head = v;
       return v;
     };
-    for (const Triangle& t : out.kept) {
+    for (const Triangle& t : out.kept_triangles()) {
       for (std::uint32_t k : t) {
         if (k < out.boundary_points() && out.vertex[k] == no_id) out.vertex[k] = vertex(k);
       }
@@ -176,7 +176,7 @@ void Tessellator::assemble(Tessellation& result) {
     const PatchOutput& out = (*outputs_)[source.patch];
     mesh.positions[v] = (*welded_positions_)[out.welded[source.point]];
     mesh.normals[v] = out.normals[source.point];
-    if (with_uv) mesh.uvs[v] = uv_of(source.patch, out.pattern.points[source.point].uv);
+    if (with_uv) mesh.uvs[v] = uv_of(source.patch, out.pattern->points[source.point].uv);
     if (options_.tangents) mesh.tangents[v] = out.tangents[source.point];
     mesh.position_ids[v] = source.position_id;
   }
@@ -215,10 +215,17 @@ void Tessellator::write_patch(std::uint32_t p, RenderMesh& mesh, std::vector<std
   };
   const PatchOutput& out = (*outputs_)[p];
   const std::size_t interior = out.interior_points();
+  // Each thread's buffers keep their storage from piece to piece (a frame writes thousands).
+  thread_local std::vector<double> us;
+  thread_local std::vector<double> vs;
+  thread_local std::vector<std::uint32_t> ids;
+  thread_local std::vector<double> uvs;
+  thread_local std::vector<std::uint32_t> first_row;
+  thread_local std::vector<std::uint32_t> cells;
   if (interior > 0) {
     const std::size_t first = out.first_vertex;
-    const std::vector<double> us = ramp(1, out.inner.u - 1, out.inner.u);
-    const std::vector<double> vs = ramp(1, out.inner.v - 1, out.inner.v);
+    ramp(1, out.inner.u - 1, out.inner.u, us);
+    ramp(1, out.inner.v - 1, out.inner.v, vs);
     const std::span<Vec4> tangents =
         options_.tangents ? std::span<Vec4>(mesh.tangents).subspan(first, interior) : std::span<Vec4>();
     pieces_.evaluate_grid(p, us, vs,
@@ -226,7 +233,7 @@ void Tessellator::write_patch(std::uint32_t p, RenderMesh& mesh, std::vector<std
                            std::span<Vec3>(mesh.normals).subspan(first, interior), tangents, stream});
     const std::size_t row = us.size();
     const std::uint32_t position = interior_first_[p] + position_offset;
-    std::vector<std::uint32_t> ids(row);
+    ids.resize(row);
     for (std::size_t j = 0; j < vs.size(); ++j) {
       for (std::size_t k = 0; k < row; ++k) ids[k] = position + static_cast<std::uint32_t>(j * row + k);
       put(mesh.position_ids.data() + first + j * row, ids.data(), row * sizeof(std::uint32_t));
@@ -235,7 +242,7 @@ void Tessellator::write_patch(std::uint32_t p, RenderMesh& mesh, std::vector<std
       // uv_of is affine in (u, v).
       const Vec2 origin = uv_of(p, Vec2(0, 0));
       const Vec2 scale = uv_of(p, Vec2(1, 1)) - origin;
-      std::vector<double> uvs(2 * row);
+      uvs.resize(2 * row);
       for (std::size_t k = 0; k < row; ++k) uvs[2 * k] = origin.x() + scale.x() * us[k];
       for (std::size_t j = 0; j < vs.size(); ++j) {
         const double y = origin.y() + scale.y() * vs[j];
@@ -247,16 +254,16 @@ void Tessellator::write_patch(std::uint32_t p, RenderMesh& mesh, std::vector<std
   const std::uint32_t boundary = out.boundary_points();
   const std::uint32_t interior_shift = out.first_vertex - boundary;
   std::uint32_t* index = mesh.indices.data() + 3 * out.first_triangle;
-  for (const Triangle& t : out.kept) {
+  for (const Triangle& t : out.kept_triangles()) {
     for (std::uint32_t k : t) *index++ = k < boundary ? out.vertex[k] : k + interior_shift;
   }
   // The inner cells row by row: each row's indices are the first row's shifted by the points
   // of a row (for_each_inner_triangle's numbering).
   if (out.inner.u > 2 && out.inner.v > 2) {
-    std::vector<std::uint32_t> first_row;
+    first_row.clear();
     for_each_inner_triangle({out.inner.u, 3, out.inner.grid}, out.first_vertex,
                             [&](const Triangle& t) { first_row.insert(first_row.end(), t.begin(), t.end()); });
-    std::vector<std::uint32_t> cells(first_row.size());
+    cells.resize(first_row.size());
     const auto points_per_row = static_cast<std::uint32_t>(out.inner.u - 1);
     for (int j = 0; j + 2 < out.inner.v; ++j) {
       const std::uint32_t shift = points_per_row * static_cast<std::uint32_t>(j);
@@ -267,10 +274,10 @@ void Tessellator::write_patch(std::uint32_t p, RenderMesh& mesh, std::vector<std
   }
   PATCHWORK_ASSERT(index == mesh.indices.data() + 3 * (out.first_triangle + out.triangle_count()),
                    "every triangle of the patch written");
-  const std::vector<std::uint32_t> ids_of_patch(std::min<std::size_t>(out.triangle_count(), 1024), patch_of(p));
-  for (std::size_t t = 0; t < out.triangle_count(); t += ids_of_patch.size()) {
-    put(triangle_patches.data() + out.first_triangle + t, ids_of_patch.data(),
-        std::min(ids_of_patch.size(), out.triangle_count() - t) * sizeof(std::uint32_t));
+  ids.assign(std::min<std::size_t>(out.triangle_count(), 1024), patch_of(p));
+  for (std::size_t t = 0; t < out.triangle_count(); t += ids.size()) {
+    put(triangle_patches.data() + out.first_triangle + t, ids.data(),
+        std::min(ids.size(), out.triangle_count() - t) * sizeof(std::uint32_t));
   }
   if (stream) stream_fence();
 }

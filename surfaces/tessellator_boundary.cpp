@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "core/assert.h"
+#include "core/parallel.h"
 #include "core/union_find.h"
 #include "surfaces/tessellator_stages.h"
 
@@ -85,14 +86,42 @@ void Tessellator::number_welded_points() {
   welded_count_ = next;
 }
 
+void PatternTable::build(int threads) {
+  const std::size_t first = patterns_.size() - pending_.size();
+  try {
+    parallel_for(pending_.size(), threads,
+                 [&](std::size_t k) { make_pattern_boundary(pending_[k], *patterns_[first + k]); });
+  } catch (...) {
+    index_.clear();
+    patterns_.clear();
+    pending_.clear();
+    throw;
+  }
+  pending_.clear();
+}
+
+void Tessellator::assign_patterns(PatternTable& table) {
+  // Old rates' patterns go before they outnumber the pieces (the outputs of the last run point
+  // into the table, but every output was cleared).
+  table.trim(count_ + 1024);
+  for (std::uint32_t p = 0; p < count_; ++p) {
+    if (plans_[p].culled) continue;
+    const PatternRates r = rates(p);
+    const bool composite = std::any_of(r.segments.begin(), r.segments.end(), [](const EdgeSegments* s) { return s; });
+    PatchOutput& out = (*outputs_)[p];
+    out.pattern = composite ? &out.own_pattern : table.find_or_add(r);
+  }
+  table.build(options_.threads);
+}
+
 // The boundary part of patch p: its points' welded ids, positions and normals, its triangles
 // (kept or dropped) and the bound of the whole pattern.
 void Tessellator::tessellate_patch(std::uint32_t p) {
   PatchOutput& out = (*outputs_)[p];
   const PatternRates r = rates(p);
   out.inner = inner_grid(r);
-  make_pattern_boundary(r, out.pattern);
-  const TessellationPattern& pattern = out.pattern;
+  if (out.pattern == &out.own_pattern) make_pattern_boundary(r, out.own_pattern);
+  const TessellationPattern& pattern = *out.pattern;
   const std::size_t count = pattern.points.size();
   out.welded.resize(count);
   out.owner.resize(count);
@@ -141,11 +170,10 @@ void Tessellator::tessellate_patch(std::uint32_t p) {
   const auto degenerate = [&](const Triangle& t) {
     return welded(t[0]) == welded(t[1]) || welded(t[1]) == welded(t[2]) || welded(t[0]) == welded(t[2]);
   };
-  if (std::none_of(pattern.triangles.begin(), pattern.triangles.end(), degenerate)) {
-    std::swap(out.kept, out.pattern.triangles);  // the common case: no collapsed edge
-  } else {
+  // The common case, no collapsed edge: every triangle is kept, and read from the pattern.
+  out.all_kept = std::none_of(pattern.triangles.begin(), pattern.triangles.end(), degenerate);
+  if (!out.all_kept) {
     for (const Triangle& t : pattern.triangles) (degenerate(t) ? out.dropped : out.kept).push_back(t);
-    out.pattern.triangles.clear();
     // Interior points outside the inner cells (2 segments in a direction) hang on boundary
     // triangles only, which may all be dropped.
     if (out.inner.u == 2 || out.inner.v == 2) {
@@ -172,7 +200,7 @@ void Tessellator::tessellate_patch(std::uint32_t p) {
 // Positions, normals (and tangents) of the boundary points, each side (with its corners) as a
 // one-row grid.
 void Tessellator::evaluate_sides(std::uint32_t p, const PatternRates& r, PatchOutput& out) const {
-  const std::size_t count = out.pattern.points.size();
+  const std::size_t count = out.pattern->points.size();
   out.positions.resize(count);
   out.normals.resize(count);
   if (options_.tangents) out.tangents.resize(count);
@@ -181,7 +209,7 @@ void Tessellator::evaluate_sides(std::uint32_t p, const PatternRates& r, PatchOu
     // from edge_step_parameter, as the grids below): all of them in one call.
     thread_local std::vector<Vec2> uvs;
     uvs.resize(count);
-    for (std::size_t k = 0; k < count; ++k) uvs[k] = out.pattern.points[k].uv;
+    for (std::size_t k = 0; k < count; ++k) uvs[k] = out.pattern->points[k].uv;
     pieces_.evaluate_samples(p, uvs, {out.positions, out.normals, out.tangents});
     return;
   }

@@ -200,10 +200,10 @@ double measured_piece_error(const SurfacePieces& pieces, std::uint32_t p, const 
   };
   // Corners: the boundary points whose position another piece (or a pole) gave.
   for (std::uint32_t k = 0; k < boundary; ++k) {
-    if (!out.owner[k]) batch.add(out.pattern.points[k].uv.x(), out.pattern.points[k].uv.y(), position(k));
+    if (!out.owner[k]) batch.add(out.pattern->points[k].uv.x(), out.pattern->points[k].uv.y(), position(k));
   }
-  for (const std::vector<Triangle>* triangles : {&out.kept, &out.dropped}) {
-    for (const Triangle& t : *triangles) {
+  for (const std::span<const Triangle> triangles : {out.kept_triangles(), std::span<const Triangle>(out.dropped)}) {
+    for (const Triangle& t : triangles) {
       sample_triangle(t, {out.uv(t[0]), out.uv(t[1]), out.uv(t[2])}, {position(t[0]), position(t[1]), position(t[2])},
                       batch);
     }

@@ -19,8 +19,10 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "core/assert.h"
@@ -136,19 +138,65 @@ struct CompositeEdge {
   std::uint32_t first_junction = 0;
 };
 
+// The boundary patterns (make_pattern_boundary) of a run's pieces, one per rates: a pattern
+// depends on its rates alone, and a scene's thousands of pieces have a few hundred rates. Kept in
+// the result's scratch, so the next frame makes only its new rates' patterns. Rates with
+// composite edges (T-junctions) are not shared: their pieces make their own.
+class PatternTable {
+ public:
+  // The pattern of `rates` (no composite edges), made on first use. Not thread-safe; a pattern
+  // added here has its points and triangles once build() has run.
+  const TessellationPattern* find_or_add(const PatternRates& rates) {
+    const Key key{rates.inner_u, rates.inner_v, rates.edges[0], rates.edges[1], rates.edges[2], rates.edges[3]};
+    const auto [entry, added] = index_.try_emplace(key, static_cast<std::uint32_t>(patterns_.size()));
+    if (added) {
+      patterns_.push_back(std::make_unique<TessellationPattern>());
+      pending_.push_back(rates);
+    }
+    return patterns_[entry->second].get();
+  }
+  // Makes the patterns added since the last build, on `threads` threads. A failure (rates too
+  // large for a pattern) empties the table, so no half-made pattern is ever found again.
+  void build(int threads);
+  // Forgets every pattern once the table holds more than `limit` (a camera that keeps moving
+  // brings new rates frame after frame).
+  void trim(std::size_t limit) {
+    if (patterns_.size() <= limit) return;
+    index_.clear();
+    patterns_.clear();
+    pending_.clear();
+  }
+
+ private:
+  using Key = std::array<int, 6>;
+  struct KeyHash {
+    std::size_t operator()(const Key& key) const noexcept {
+      std::uint64_t h = 0x9E3779B97F4A7C15ull;
+      for (const int k : key) h = (h ^ static_cast<std::uint32_t>(k)) * 0xC2B2AE3D27D4EB4Full;
+      return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+  };
+  std::unordered_map<Key, std::uint32_t, KeyHash> index_;
+  std::vector<std::unique_ptr<TessellationPattern>> patterns_;
+  std::vector<PatternRates> pending_;  // of the last patterns_, not yet made
+};
+
 // One patch's part of the tessellation. Only what touches its boundary is kept per patch (the
 // boundary points, their attributes and the triangles with a corner among them); the interior
 // points and inner cells are regular (make_pattern_boundary) and are written straight into the
 // output, so a large grid costs no intermediate copies.
 struct PatchOutput {
   InnerGrid inner{1, 1, true};
-  TessellationPattern pattern;        // make_pattern_boundary
+  // make_pattern_boundary of the piece's rates: shared (PatternTable) or own_pattern.
+  const TessellationPattern* pattern = nullptr;
+  TessellationPattern own_pattern;    // a pattern with composite edges
   std::vector<std::uint32_t> welded;  // per boundary point
   std::vector<bool> owner;            // this patch supplies the welded point's position
   std::vector<Vec3> positions;        // per boundary point, until assembled
   std::vector<Vec3> normals;
   std::vector<Vec4> tangents;
-  std::vector<Triangle> kept;         // boundary triangles, pattern-local
+  bool all_kept = true;               // kept_triangles() is the pattern's every triangle
+  std::vector<Triangle> kept;         // else the boundary triangles kept, pattern-local
   std::vector<Triangle> dropped;      // use one welded point twice (at a collapsed edge)
   std::vector<std::uint32_t> vertex;  // render vertex of each boundary point (no_id: unused)
   std::uint32_t first_vertex = 0;     // render vertex of interior point 0 (then row by row)
@@ -162,13 +210,15 @@ struct PatchOutput {
 
   // Empties every array, keeping its storage for the next run.
   void clear() {
-    pattern.points.clear();
-    pattern.triangles.clear();
+    pattern = nullptr;
+    own_pattern.points.clear();
+    own_pattern.triangles.clear();
     welded.clear();
     owner.clear();
     positions.clear();
     normals.clear();
     tangents.clear();
+    all_kept = true;
     kept.clear();
     dropped.clear();
     vertex.clear();
@@ -176,17 +226,25 @@ struct PatchOutput {
     bound = 0.0;
     weld_gap = 0.0;
   }
-  std::uint32_t boundary_points() const { return static_cast<std::uint32_t>(pattern.points.size()); }
+  std::uint32_t boundary_points() const {
+    return pattern == nullptr ? 0 : static_cast<std::uint32_t>(pattern->points.size());
+  }
+  // The boundary triangles that are in the mesh (pattern-local indices).
+  std::span<const Triangle> kept_triangles() const {
+    if (!all_kept) return kept;
+    if (pattern == nullptr) return {};
+    return pattern->triangles;
+  }
   std::size_t interior_points() const {
     return static_cast<std::size_t>(inner.u - 1) * static_cast<std::size_t>(inner.v - 1);
   }
   std::size_t inner_cells() const {
     return static_cast<std::size_t>(std::max(inner.u - 2, 0)) * static_cast<std::size_t>(std::max(inner.v - 2, 0));
   }
-  std::size_t triangle_count() const { return kept.size() + 2 * inner_cells(); }
+  std::size_t triangle_count() const { return kept_triangles().size() + 2 * inner_cells(); }
   // The (u, v) of pattern point k (boundary points listed, interior points on the inner grid).
   Vec2 uv(std::uint32_t k) const {
-    if (k < boundary_points()) return pattern.points[k].uv;
+    if (k < boundary_points()) return pattern->points[k].uv;
     const std::uint32_t q = k - boundary_points();
     const auto row = static_cast<std::uint32_t>(inner.u - 1);
     return {static_cast<double>(q % row + 1) / inner.u, static_cast<double>(q / row + 1) / inner.v};
@@ -275,6 +333,7 @@ struct TessellatorScratch {
   std::uint64_t memo_owner = 0;
   std::array<std::vector<GridSearchMemo>, 3> grid_memos;
   std::vector<PatchOutput> outputs;
+  PatternTable patterns;
   std::vector<Vec3> welded_positions;
   std::vector<VertexSource> sources;
   std::vector<std::uint8_t> pole;  // by welded id: a collapsed edge's point
@@ -299,12 +358,10 @@ inline std::int64_t least_segments(const SecondDerivativeBounds& M) {
   return flat ? 1 : 2;
 }
 
-// The parameters k / rate for k = from..to (a side's or the interior's points).
-inline std::vector<double> ramp(int from, int to, int rate) {
-  std::vector<double> ts;
-  ts.reserve(static_cast<std::size_t>(std::max(to - from + 1, 0)));
+// The parameters k / rate for k = from..to (a side's or the interior's points), into `ts`.
+inline void ramp(int from, int to, int rate, std::vector<double>& ts) {
+  ts.clear();
   for (int k = from; k <= to; ++k) ts.push_back(static_cast<double>(k) / rate);
-  return ts;
 }
 
 inline void check_positive(double value, const char* name) {
@@ -414,6 +471,10 @@ class Tessellator {
   void number_welded_points();
 
   // --- per patch ----------------------------------------------------------------------------
+
+  // Every tessellated piece's boundary pattern: shared from `table` (made there if new) or,
+  // with composite edges, the piece's own (made by tessellate_patch).
+  void assign_patterns(PatternTable& table);
 
   // The boundary part of patch p: its points' welded ids, positions and normals, its triangles
   // (kept or dropped) and the bound of the whole pattern.

@@ -55,10 +55,11 @@ inline MeasuredErrorComparison compare_measured_error(const SurfacePieces& piece
   for (const Vec3& x : mesh.positions) comparison.scale = std::max(comparison.scale, x.norm());
   for (std::uint32_t p = 0; p < pieces.count; ++p) {
     const PatchOutput& out = scratch.outputs[p];
-    if (out.pattern.points.empty()) continue;  // culled
+    if (out.boundary_points() == 0) continue;  // culled
     comparison.unused_interior = comparison.unused_interior || out.unused_interior;
     const auto boundary = static_cast<std::uint32_t>(out.boundary_points());
-    std::vector<Triangle> triangles(out.kept.begin(), out.kept.end());
+    const std::span<const Triangle> kept = out.kept_triangles();
+    std::vector<Triangle> triangles(kept.begin(), kept.end());
     for_each_inner_triangle(out.inner, boundary, [&](const Triangle& t) { triangles.push_back(t); });
     std::map<std::uint32_t, Vec3> written;  // pattern point -> its position in the mesh
     for (std::size_t m = 0; m < triangles.size(); ++m) {
