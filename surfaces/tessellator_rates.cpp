@@ -95,7 +95,7 @@ void Tessellator::plan_patches() {
   // depend on the threads.
   const auto plan_piece = [&](std::size_t p) {
     PatchPlan& plan = plans_[p];
-    plan.bounds = pieces_.bounds[p];
+    plan.bounds = &pieces_.bounds[p];
     plan.memo = grid_memos_ ? &(*grid_memos_)[p] : nullptr;
     if (options_.segments) {
       plan.nu = plan.nv = *options_.segments;
@@ -117,8 +117,8 @@ void Tessellator::plan_patches() {
     GridSize grid{};
     try {
       grid = planned_ && reserve == 0.0 ? (*planned_)[p]
-             : grid_memos_ ? grid_for_tolerance(plan.bounds, plan.tolerance, least_segments(plan.bounds), (*grid_memos_)[p])
-                           : grid_for_tolerance(plan.bounds, plan.tolerance, least_segments(plan.bounds));
+             : grid_memos_ ? grid_for_tolerance(*plan.bounds, plan.tolerance, least_segments(*plan.bounds), (*grid_memos_)[p])
+                           : grid_for_tolerance(*plan.bounds, plan.tolerance, least_segments(*plan.bounds));
     } catch (const InvalidInput&) {
       throw InvalidInput(detail::message("tessellate: piece ", p,
                                          " would need more than 2^20 segments per side at "
@@ -355,7 +355,7 @@ double Tessellator::pattern_bound_of(std::uint32_t p, const PatternRates& r) {
   // Each thread's pattern keeps its storage from call to call.
   thread_local TessellationPattern boundary;
   make_pattern_boundary(r, boundary);
-  return pattern_bound(boundary, inner, plan.bounds, plan.cell_bound(inner.u, inner.v), surface, target);
+  return pattern_bound(boundary, inner, *plan.bounds, plan.cell_bound(inner.u, inner.v), surface, target);
 }
 
 void Tessellator::check_triangle_budget() const {
