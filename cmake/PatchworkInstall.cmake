@@ -24,7 +24,7 @@ set(patchwork_include_dir "${CMAKE_INSTALL_INCLUDEDIR}/patchwork")
 # tessellator's stages, the patch-edge helpers, what the two OBJ readers share, the free-form
 # records' checks).
 set(patchwork_internal_headers subdivision/osd_refiner.h curves/homogeneous.h surfaces/tessellator_stages.h
-    surfaces/patch_edge_geometry.h io/obj_syntax.h io/obj_freeform_checks.h)
+    surfaces/grid_bounds.h surfaces/patch_edge_geometry.h io/obj_syntax.h io/obj_freeform_checks.h)
 
 # What code compiled against the installed libraries must share with them, in place of this
 # build's patchwork_build_flags (assertions and instrumentation are the libraries' own business):

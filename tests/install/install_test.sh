@@ -50,7 +50,7 @@ while IFS=: read -r module _; do
   for header in "$source_dir/$module"/*.h; do
     name="$module/${header##*/}"
     case "$name" in
-      subdivision/osd_refiner.h | curves/homogeneous.h | surfaces/tessellator_stages.h | \
+      subdivision/osd_refiner.h | curves/homogeneous.h | surfaces/tessellator_stages.h | surfaces/grid_bounds.h | \
         surfaces/patch_edge_geometry.h | io/obj_syntax.h | io/obj_freeform_checks.h) internal=1 ;;
       *) internal=0 ;;
     esac
