@@ -105,7 +105,8 @@ void Tessellator::plan_patches() {
     if (options_.camera) {
       const Camera& camera = *options_.camera;
       const BezierPatch3& patch = (*pieces_.patches)[p];
-      plan.tolerance = options_.pixel_tolerance * std::max(nearest_depth(patch, camera), near_depth) / focal;
+      plan.tolerance =
+          tolerance_on_ladder(options_.pixel_tolerance * std::max(nearest_depth(patch, camera), near_depth) / focal);
       const bool rational = !pieces_.rational.empty() && pieces_.rational[p];
       plan.culled =
           outside_frustum(patch, camera) || (back_faces_hidden[p] && !rational && back_facing(patch, camera.eye));

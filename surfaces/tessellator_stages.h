@@ -16,6 +16,7 @@
 // Internal: nothing here is installed or part of the API.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -357,6 +358,28 @@ constexpr std::size_t streamed_output_bytes = std::size_t{64} << 20;
 inline std::int64_t least_segments(const SecondDerivativeBounds& M) {
   const bool flat = M.uu == 0.0 && M.uv == 0.0 && M.vv == 0.0;
   return flat ? 1 : 2;
+}
+
+// The camera's tolerances on a ladder: the largest 2^(k/16), k whole (each rounded down), that
+// is at most t (t positive and finite). A patch's tolerance tau z_min / f_px drifts from frame to frame
+// as the camera moves; on the ladder it stays put until the patch's depth has changed by 4.4%,
+// so the grid search's memo (GridSearchMemo's answers) serves frame after frame. The mesh is
+// finer by at most that factor: the tolerance asked for still holds.
+inline double tolerance_on_ladder(double t) {
+  // 2^(-k/16), k = 0 .. 16, rounded down (so that every step is at most its exact value).
+  static const std::array<double, 17> steps = [] {
+    std::array<double, 17> s{};
+    for (int k = 0; k <= 16; ++k) s[static_cast<std::size_t>(k)] = std::nextafter(std::exp2(-k / 16.0), 0.0);
+    s[0] = 1.0;
+    s[16] = 0.5;
+    return s;
+  }();
+  int exponent = 0;
+  const double mantissa = std::frexp(t, &exponent);  // t = mantissa 2^exponent, mantissa in [1/2, 1)
+  std::size_t k = 1;
+  while (steps[k] > mantissa) ++k;  // steps[16] = 1/2 <= mantissa ends it
+  const double step = std::ldexp(steps[k], exponent);
+  return step <= t ? step : t;  // (a subnormal t: ldexp rounds)
 }
 
 // The parameters k / rate for k = from..to (a side's or the interior's points), into `ts`.

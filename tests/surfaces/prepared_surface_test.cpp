@@ -15,6 +15,7 @@
 #include "io/obj_freeform.h"
 #include "surfaces/patch_bounding_box.h"
 #include "surfaces/patch_transform.h"
+#include "surfaces/tessellator_stages.h"
 #include "tests/surfaces/patch_fixtures.h"
 #include "tests/surfaces/patch_set_fixtures.h"
 #include "tests/surfaces/tessellation_checks.h"
@@ -270,6 +271,34 @@ TEST(PreparedSurface, TwoThreadsShareOnePreparedSurface) {
     testing::expect_identical_tessellations(first[k], alone[k]);
     testing::expect_identical_tessellations(second[k], alone[k]);
   }
+}
+
+// The camera's tolerances are on the ladder 2^(k/16): each is the largest ladder value at most
+// the tolerance asked for (tau z_min / f_px), so a moving camera's plans repeat from frame to
+// frame. Over tolerances from 1e-300 to 1e300: at most t, within a step of it, a ladder value
+// maps to itself, and the ladder keeps the order.
+TEST(PreparedSurface, CameraTolerancesLieOnTheLadderJustBelowTheirOwn) {
+  const double step = std::exp2(-1.0 / 16);
+  double previous_t = 0.0;
+  double previous = 0.0;
+  for (double t = 1e-300; t < 1e300; t *= 1.0137) {
+    const double on = detail::tolerance_on_ladder(t);
+    ASSERT_LE(on, t) << t;
+    ASSERT_GT(on, t * step * (1.0 - 1e-12)) << t;
+    ASSERT_EQ(detail::tolerance_on_ladder(on), on) << t;
+    ASSERT_GE(on, previous) << previous_t << " then " << t;
+    previous = on;
+    previous_t = t;
+  }
+  EXPECT_EQ(detail::tolerance_on_ladder(1.0), 1.0);
+  EXPECT_EQ(detail::tolerance_on_ladder(0.5), 0.5);
+  EXPECT_EQ(detail::tolerance_on_ladder(std::nextafter(1.0, 0.0)), std::nextafter(std::exp2(-1.0 / 16), 0.0));
+  // A camera's run reports the largest of its patches' tolerances: a ladder value below the
+  // largest tau z_min / f_px, and every patch meets its own.
+  const TessellationOptions options = looking(teapot(), Vec3(0.73, -0.55, 0.49), BackFaceCulling::automatic);
+  const Tessellation result = tessellate(teapot(), options);
+  EXPECT_EQ(detail::tolerance_on_ladder(result.tolerance), result.tolerance);
+  EXPECT_LE(result.error_bound, result.tolerance);
 }
 
 }  // namespace prepared_surface_test
