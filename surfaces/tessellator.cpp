@@ -48,9 +48,18 @@ void Tessellator::run(Tessellation& result, bool keep_scratch) {
   outputs_->resize(count_);
   parallel_for(count_, options_.threads, [&](std::size_t p) { (*outputs_)[p].clear(); });
   assign_patterns(result.scratch.get().patterns);
+  // Boundary points are evaluated by their owners, then shared (share_samples).
+  sharing_samples_ = static_cast<bool>(pieces_.evaluate_samples);
+  sample_owners_ = &result.scratch.get().sample_owners;
+  sample_owners_->assign(sharing_samples_ ? boundary_ids_ : 0, ~std::uint64_t{0});
   parallel_for(count_, options_.threads, [&](std::size_t p) {
     if (!plans_[p].culled) tessellate_patch(static_cast<std::uint32_t>(p));
   });
+  if (sharing_samples_) {
+    parallel_for(count_, options_.threads, [&](std::size_t p) {
+      if (!plans_[p].culled) share_samples(static_cast<std::uint32_t>(p));
+    });
+  }
   assemble(result);
   result.measure_seconds = 0.0;
   if (options_.measure) {
@@ -66,6 +75,7 @@ void Tessellator::run(Tessellation& result, bool keep_scratch) {
     result.scratch.release();
     outputs_ = nullptr;
     welded_positions_ = nullptr;
+    sample_owners_ = nullptr;
     std::vector<PatchPlan>().swap(plans_);
     std::vector<std::array<EdgeSlot, 4>>().swap(slots_);
     std::vector<CompositeEdge>().swap(composites_);

@@ -3,6 +3,8 @@
 // piece's boundary pattern with its welded ids, positions, normals and tangents.
 
 #include <algorithm>
+#include <span>
+#include <vector>
 
 #include "core/assert.h"
 #include "core/parallel.h"
@@ -76,6 +78,7 @@ void Tessellator::number_welded_points() {
     c.first_id = next;
     next += static_cast<std::uint32_t>(c.rate - 1);
   }
+  boundary_ids_ = next;
   interior_first_.assign(count_, no_id);
   for (std::uint32_t p = 0; p < count_; ++p) {
     if (plans_[p].culled) continue;
@@ -206,11 +209,17 @@ void Tessellator::evaluate_sides(std::uint32_t p, const PatternRates& r, PatchOu
   if (options_.tangents) out.tangents.resize(count);
   if (pieces_.evaluate_samples) {
     // The boundary points' (u, v) are the sides' parameters (make_pattern_boundary takes them
-    // from edge_step_parameter, as the grids below): all of them in one call.
-    thread_local std::vector<Vec2> uvs;
-    uvs.resize(count);
-    for (std::size_t k = 0; k < count; ++k) uvs[k] = out.pattern->points[k].uv;
-    pieces_.evaluate_samples(p, uvs, {out.positions, out.normals, out.tangents});
+    // from edge_step_parameter, as the grids below): the owned ones in one call, the rest
+    // shared or evaluated by share_samples.
+    thread_local std::vector<std::uint32_t> owned;
+    owned.clear();
+    for (std::uint32_t k = 0; k < count; ++k) {
+      if (out.owner[k]) {
+        owned.push_back(k);
+        (*sample_owners_)[out.welded[k]] = std::uint64_t{p} << 32 | k;
+      }
+    }
+    evaluate_points_of(p, owned, out);
     return;
   }
   // Each thread's buffers keep their storage from side to side.
@@ -256,6 +265,57 @@ void Tessellator::evaluate_sides(std::uint32_t p, const PatternRates& r, PatchOu
       if (options_.tangents) out.tangents[point] = tangents[s];
     }
   }
+}
+
+// The samples of piece p's boundary points `points` (indices into its pattern), in one
+// evaluate_samples call, into out's arrays at those indices.
+void Tessellator::evaluate_points_of(std::uint32_t p, std::span<const std::uint32_t> points, PatchOutput& out) const {
+  if (points.empty()) return;
+  thread_local std::vector<Vec2> uvs;
+  thread_local std::vector<Vec3> positions;
+  thread_local std::vector<Vec3> normals;
+  thread_local std::vector<Vec4> tangents;
+  const std::size_t n = points.size();
+  uvs.resize(n);
+  positions.resize(n);
+  normals.resize(n);
+  tangents.resize(options_.tangents ? n : 0);
+  for (std::size_t i = 0; i < n; ++i) uvs[i] = out.pattern->points[points[i]].uv;
+  pieces_.evaluate_samples(p, uvs, {positions, normals, tangents});
+  for (std::size_t i = 0; i < n; ++i) {
+    out.positions[points[i]] = positions[i];
+    out.normals[points[i]] = normals[i];
+    if (options_.tangents) out.tangents[points[i]] = tangents[i];
+  }
+}
+
+void Tessellator::share_samples(std::uint32_t p) const {
+  PatchOutput& out = (*outputs_)[p];
+  thread_local std::vector<std::uint32_t> rest;
+  rest.clear();
+  for (std::uint32_t k = 0; k < out.boundary_points(); ++k) {
+    if (out.owner[k]) continue;
+    const std::uint64_t at = (*sample_owners_)[out.welded[k]];
+    PATCHWORK_ASSERT(at != ~std::uint64_t{0}, "every welded boundary point has an owner");
+    if (at == ~std::uint64_t{0}) {
+      rest.push_back(k);
+      continue;
+    }
+    const auto q = static_cast<std::uint32_t>(at >> 32);
+    const auto j = static_cast<std::uint32_t>(at);
+    const PatchOutput& owner = (*outputs_)[q];
+    // The same point of the same patch (not a pole's other directions, not a closed patch's
+    // other side): the owner's samples are this point's.
+    if (patch_of(q) == patch_of(p) &&
+        patch_parameter(q, owner.pattern->points[j].uv) == patch_parameter(p, out.pattern->points[k].uv)) {
+      out.positions[k] = owner.positions[j];
+      out.normals[k] = owner.normals[j];
+      if (options_.tangents) out.tangents[k] = owner.tangents[j];
+    } else {
+      rest.push_back(k);
+    }
+  }
+  evaluate_points_of(p, rest, out);
 }
 
 }  // namespace patchwork::detail

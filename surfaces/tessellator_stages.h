@@ -336,6 +336,7 @@ struct TessellatorScratch {
   std::array<std::vector<GridSearchMemo>, 3> grid_memos;
   std::vector<PatchOutput> outputs;
   PatternTable patterns;
+  std::vector<std::uint64_t> sample_owners;
   std::vector<Vec3> welded_positions;
   std::vector<VertexSource> sources;
   std::vector<std::uint8_t> pole;  // by welded id: a collapsed edge's point
@@ -374,6 +375,7 @@ inline double tolerance_on_ladder(double t) {
     s[16] = 0.5;
     return s;
   }();
+  if (!(t > 0.0) || !std::isfinite(t)) return t;  // the grid search refuses these
   int exponent = 0;
   const double mantissa = std::frexp(t, &exponent);  // t = mantissa 2^exponent, mantissa in [1/2, 1)
   std::size_t k = 1;
@@ -505,8 +507,24 @@ class Tessellator {
   void tessellate_patch(std::uint32_t p);
 
   // Positions, normals (and tangents) of the boundary points, each side (with its corners) as a
-  // one-row grid.
+  // one-row grid. With `sharing_samples_`, only the points the piece owns (the rest come from
+  // share_samples), each recorded in sample_owners_.
   void evaluate_sides(std::uint32_t p, const PatternRates& r, PatchOutput& out) const;
+
+  // The boundary points patch p does not own: copied from their owner where that is the same
+  // patch at the same parameters (split pieces share their inner edges and corners; the
+  // evaluation there is the same), evaluated otherwise. After every piece's tessellate_patch.
+  void share_samples(std::uint32_t p) const;
+
+  // The samples of piece p's boundary points `points` (pattern indices) into out's arrays.
+  void evaluate_points_of(std::uint32_t p, std::span<const std::uint32_t> points, PatchOutput& out) const;
+
+  // Piece q's parameter point uv in its patch's parameters (as SurfacePieces' evaluators map it).
+  Vec2 patch_parameter(std::uint32_t q, const Vec2& uv) const {
+    if (pieces_.domains.empty()) return uv;
+    const SurfacePieces::Domain& d = pieces_.domains[q];
+    return Vec2(d.u0, d.v0) + d.size * uv;
+  }
 
   // --- assembly -----------------------------------------------------------------------------
 
@@ -558,6 +576,12 @@ class Tessellator {
   std::vector<bool> corner_owner_;
   std::vector<std::uint32_t> interior_first_;
   std::uint32_t welded_count_ = 0;
+  std::uint32_t boundary_ids_ = 0;  // welded ids below this are boundary points
+  // Boundary points are evaluated by their owners only, the others share (share_samples): with
+  // the scattered-sample evaluator (SurfacePieces::evaluate_samples) only.
+  bool sharing_samples_ = false;
+  // Per boundary welded id, its owner's piece (high 32 bits) and point (in the scratch).
+  std::vector<std::uint64_t>* sample_owners_ = nullptr;
   std::vector<PatchOutput>* outputs_ = nullptr;    // in the result's scratch
   std::vector<Vec3>* welded_positions_ = nullptr;  // of the boundary points, by welded id (in the scratch)
   bool unused_interior_ = false;
