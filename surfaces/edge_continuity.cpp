@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "core/errors.h"
 #include "curves/continuity.h"
 #include "surfaces/patch_edge_geometry.h"
-#include "surfaces/patch_grid.h"
+#include "surfaces/surface_normal.h"
 
 namespace patchwork {
 namespace {
@@ -45,26 +46,19 @@ int columns_ck(const BezierPatch<Dim>& first, PatchEdge first_edge, const Bezier
 }
 
 // The largest angle between the unit normals of the two sides at `samples` points along the
-// edge; with the orientations opposite along the edge, normals agree. Each side's normals come
-// from one evaluate_samples call (the limit normal where F_u x F_v vanishes, as unit_normal).
-template <class Patch>
-double max_normal_angle(const Patch& first, PatchEdge first_edge, const Patch& second, PatchEdge second_edge,
-                        bool reversed, int samples) {
+// edge; with the orientations opposite along the edge, normals agree.
+double max_normal_angle(const std::function<Vec3(double, double)>& first_normal, PatchEdge first_edge,
+                        const std::function<Vec3(double, double)>& second_normal, PatchEdge second_edge, bool reversed,
+                        int samples) {
   const bool opposite_walks = walks_forward(first_edge) != (walks_forward(second_edge) != reversed);
-  const auto count = static_cast<std::size_t>(samples);
-  std::vector<Vec2> first_uvs(count), second_uvs(count);
-  for (std::size_t k = 0; k < count; ++k) {
-    const double s = static_cast<double>(k) / static_cast<double>(count - 1);
-    first_uvs[k] = edge_parameter(first_edge, s);
-    second_uvs[k] = edge_parameter(second_edge, reversed ? 1.0 - s : s);
-  }
-  std::vector<Vec3> points(count), first_normals(count), second_normals(count);
-  evaluate_samples(first, first_uvs, {points, first_normals, {}});
-  evaluate_samples(second, second_uvs, {points, second_normals, {}});
   double angle = 0.0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const Vec3& n1 = first_normals[k];
-    const Vec3 n2 = opposite_walks ? second_normals[k] : Vec3(-second_normals[k]);
+  for (int k = 0; k < samples; ++k) {
+    const double s = static_cast<double>(k) / (samples - 1);
+    const Vec2 p1 = edge_parameter(first_edge, s);
+    const Vec2 p2 = edge_parameter(second_edge, reversed ? 1.0 - s : s);
+    const Vec3 n1 = first_normal(p1.x(), p1.y());
+    Vec3 n2 = second_normal(p2.x(), p2.y());
+    if (!opposite_walks) n2 = -n2;
     angle = std::max(angle, std::atan2(n1.cross(n2).norm(), n1.dot(n2)));
   }
   return angle;
@@ -106,8 +100,9 @@ EdgeContinuity edge_continuity(const BezierPatch3& first_patch, PatchEdge first_
       detail::max_distance(row_from_edge(first, first_edge, 0), row_from_edge(second, second_edge, 0), reversed),
       columns_ck(first, first_edge, second, second_edge, reversed, relative_tolerance), false, 0.0};
   // G^1 from sampled normals.
-  result.max_normal_angle = max_normal_angle(first, first_edge, second, second_edge, reversed,
-                                             4 * std::max(first.degree_u(), first.degree_v()) + 1);
+  result.max_normal_angle = max_normal_angle([&](double u, double v) { return unit_normal(first, u, v); }, first_edge,
+                                             [&](double u, double v) { return unit_normal(second, u, v); }, second_edge,
+                                             reversed, 4 * std::max(first.degree_u(), first.degree_v()) + 1);
   result.g1 = result.ck >= 0 && result.max_normal_angle <= g1_angle;
   return result;
 }
@@ -141,8 +136,10 @@ EdgeContinuity edge_continuity(const AnyBezierPatch& first_patch, PatchEdge firs
   second = BezierPatch4(second.degree_u(), second.degree_v(), std::move(scaled));
   EdgeContinuity result{agreement.gap, columns_ck(first, first_edge, second, second_edge, reversed, relative_tolerance),
                         false, 0.0};
-  result.max_normal_angle = max_normal_angle(first_rational, first_edge, second_rational, second_edge, reversed,
-                                             4 * std::max(first.degree_u(), first.degree_v()) + 1);
+  result.max_normal_angle =
+      max_normal_angle([&](double u, double v) { return unit_normal(first_rational, u, v); }, first_edge,
+                       [&](double u, double v) { return unit_normal(second_rational, u, v); }, second_edge, reversed,
+                       4 * std::max(first.degree_u(), first.degree_v()) + 1);
   result.g1 = result.ck >= 0 && result.max_normal_angle <= g1_angle;
   return result;
 }
