@@ -114,7 +114,14 @@ void Tessellator::assign_patterns(PatternTable& table) {
     PatchOutput& out = (*outputs_)[p];
     out.pattern = composite ? &out.own_pattern : table.find_or_add(r);
   }
-  table.build(options_.threads);
+  try {
+    table.build(options_.threads);
+  } catch (...) {
+    // The failed build emptied the table: no output may keep a pointer into it.
+    for (PatchOutput& out : *outputs_)
+      if (out.pattern != &out.own_pattern) out.pattern = nullptr;
+    throw;
+  }
 }
 
 // The boundary part of patch p: its points' welded ids, positions and normals, its triangles

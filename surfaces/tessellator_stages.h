@@ -15,6 +15,7 @@
 //   tessellator.cpp               run() in that order, and the public tessellate().
 // Internal: nothing here is installed or part of the API.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -23,6 +24,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -150,12 +152,16 @@ class PatternTable {
   // added here has its points and triangles once build() has run.
   const TessellationPattern* find_or_add(const PatternRates& rates) {
     const Key key{rates.inner_u, rates.inner_v, rates.edges[0], rates.edges[1], rates.edges[2], rates.edges[3]};
-    const auto [entry, added] = index_.try_emplace(key, static_cast<std::uint32_t>(patterns_.size()));
-    if (added) {
-      patterns_.push_back(std::make_unique<TessellationPattern>());
-      pending_.push_back(rates);
-    }
-    return patterns_[entry->second].get();
+    if (const auto found = index_.find(key); found != index_.end()) return patterns_[found->second].get();
+    // Everything that can throw comes before the table changes, so a bad_alloc leaves it whole.
+    auto pattern = std::make_unique<TessellationPattern>();
+    make_room(patterns_);
+    make_room(pending_);
+    index_.emplace(key, static_cast<std::uint32_t>(patterns_.size()));
+    static_assert(std::is_nothrow_copy_constructible_v<PatternRates>);
+    patterns_.push_back(std::move(pattern));
+    pending_.push_back(rates);
+    return patterns_.back().get();
   }
   // Makes the patterns added since the last build, on `threads` threads. A failure (rates too
   // large for a pattern) empties the table, so no half-made pattern is ever found again.
@@ -170,6 +176,11 @@ class PatternTable {
   }
 
  private:
+  // Room for one more push_back, growing geometrically (reserve(size + 1) would copy every time).
+  template <class T>
+  static void make_room(std::vector<T>& v) {
+    if (v.size() == v.capacity()) v.reserve(std::max<std::size_t>(16, 2 * v.capacity()));
+  }
   using Key = std::array<int, 6>;
   struct KeyHash {
     std::size_t operator()(const Key& key) const noexcept {

@@ -4,7 +4,8 @@
 // Tolerance from the view: a deviation e at depth z covers e f_px / z pixels, f_px = (height / 2)
 // / tan(fov / 2) the focal length in pixels; so a patch whose nearest control point is at depth
 // z_min (the surface lies in the net's convex hull, so none of it is nearer) gets
-// eps = pixel_tolerance * z_min / f_px.
+// eps = pixel_tolerance * z_min / f_px, which the tessellator rounds down to the ladder 2^(k/16)
+// (tolerance_on_ladder) so that its grid searches repeat from frame to frame.
 //
 // Culling, both conservative:
 //   - frustum: every control point outside one of the planes (left, right, bottom, top, near);
