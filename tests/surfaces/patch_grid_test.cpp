@@ -138,6 +138,53 @@ RC_GTEST_PROP(PatchGrid, PointListMatchesTheGridSamples, ()) {
   }
 }
 
+// A pole far from the origin: F_u = sum_k B_k'(u) P_k over a collapsed row of equal points is
+// rounding noise of size eps |P|, not zero, so a threshold relative to the net's size alone took
+// it for a regular derivative and the normal was that noise's (2.2 rad off at an offset of 1e6).
+// Translated copies of a cone-like patch must keep the untranslated normals (to rounding) on its
+// collapsed side, in the grid, the scattered samples and the rational evaluators.
+TEST(PatchGrid, PoleNormalsDoNotDependOnTheDistanceFromTheOrigin) {
+  const auto net = [](const Vec3& offset) {
+    std::vector<Vec3> points;
+    for (int j = 0; j <= 3; ++j) {
+      for (int i = 0; i <= 3; ++i) {
+        const double r = j / 3.0;  // row j = 0 collapsed: a pole
+        points.push_back(offset + Vec3(r * std::cos(0.5 * i), r * std::sin(0.5 * i), 0.3 * r * r));
+      }
+    }
+    return BezierPatch3(3, 3, points);
+  };
+  const std::vector<double> us = {0.0, 0.3, 0.7, 1.0};
+  const std::vector<double> vs = {0.0, 0.5};
+  const PatchGridWeights weights(3, 3, us, vs);
+  std::vector<Vec2> uvs;
+  for (const double v : vs)
+    for (const double u : us) uvs.emplace_back(u, v);
+  const std::vector<double> unit_weights(16, 1.0);
+  std::vector<double> varied_weights;
+  for (int k = 0; k < 16; ++k) varied_weights.push_back(1.0 + 0.25 * (k % 4));
+  const BezierPatch3 origin = net(Vec3::Zero());
+  const PatchGridSamples expected = evaluate_grid(origin, weights);
+  const RationalBezierPatch origin_rational(3, 3, origin.control_points(), varied_weights);
+  std::vector<Vec3> expected_rational(uvs.size()), points(uvs.size());
+  evaluate_samples(origin_rational, uvs, {points, expected_rational, {}});
+  for (const double offset : {1e3, 1e6, 1e9}) {
+    const BezierPatch3 far = net(offset * Vec3(1.0, 0.7, -0.3));
+    const PatchGridSamples grid = evaluate_grid(far, weights);
+    std::vector<Vec3> samples(uvs.size()), unit_rational(uvs.size()), rational(uvs.size());
+    evaluate_samples(far, uvs, {points, samples, {}});
+    evaluate_samples(RationalBezierPatch(3, 3, far.control_points(), unit_weights), uvs, {points, unit_rational, {}});
+    evaluate_samples(RationalBezierPatch(3, 3, far.control_points(), varied_weights), uvs, {points, rational, {}});
+    for (std::size_t k = 0; k < uvs.size(); ++k) {
+      SCOPED_TRACE(::testing::Message() << "offset " << offset << " at (" << uvs[k].x() << ", " << uvs[k].y() << ")");
+      EXPECT_LT((grid.normals[k] - expected.normals[k]).norm(), 1e-6);
+      EXPECT_LT((samples[k] - expected.normals[k]).norm(), 1e-6);
+      EXPECT_LT((unit_rational[k] - expected.normals[k]).norm(), 1e-6);
+      EXPECT_LT((rational[k] - expected_rational[k]).norm(), 1e-6);
+    }
+  }
+}
+
 TEST(PatchGrid, PointListGetsTheLimitNormalAndRefusesBadInput) {
   const BezierPatch3 patch = testing::product_patch({Vec3(1, 0, 1), Vec3(0.5, 0.5, 0), Vec3(0, 1, 1)},
                                                     {Vec3(0, 0, 0), Vec3(0.5, 0.5, 0), Vec3(1, 1, 1)});
