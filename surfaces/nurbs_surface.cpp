@@ -151,12 +151,19 @@ Vec3 unit_normal(const NurbsSurface& surface, double u, double v) {
   // In the parameters (s, t) in [0,1]^2 of the span's Bezier piece: derivatives scale by the
   // span lengths (chain rule), and the limit direction looks towards the piece's centre.
   const double du = U[su + 1] - U[su], dv = V[sv + 1] - V[sv];
-  // Vanishing is judged against the span's control points, the net of the piece's derivatives.
+  // Vanishing is judged against the span's control points and weights, the net of the piece's
+  // derivatives.
   Eigen::AlignedBox3d box(surface.control_point(su - p, sv - q));
+  double w_min = surface.weight(su - p, sv - q);
+  double w_max = w_min;
   for (int j = sv - q; j <= sv; ++j) {
-    for (int i = su - p; i <= su; ++i) box.extend(surface.control_point(i, j));
+    for (int i = su - p; i <= su; ++i) {
+      box.extend(surface.control_point(i, j));
+      w_min = std::min(w_min, surface.weight(i, j));
+      w_max = std::max(w_max, surface.weight(i, j));
+    }
   }
-  const double scale = box.diagonal().norm();
+  const double threshold = detail::degeneracy_thresholds(p, q, box, true, w_max / w_min).normal;
   const auto in_piece = [&](int order) {
     PartialDerivatives<3> F = partial_derivatives(surface, u, v, order);
     for (int a = 0; a <= order; ++a) {
@@ -166,8 +173,9 @@ Vec3 unit_normal(const NurbsSurface& surface, double u, double v) {
   };
   const PartialDerivatives<3> first = in_piece(1);
   const Vec3 normal = first.at(1, 0).cross(first.at(0, 1));
-  if (normal.norm() > 1e-12 * std::max(p * q, 1) * scale * scale) return normal.normalized();
-  return detail::limit_unit_normal(in_piece(std::min(p + q, 12) + 1), (u - U[su]) / du, (v - V[sv]) / dv, scale, p, q);
+  if (normal.norm() > threshold) return normal.normalized();
+  return detail::limit_unit_normal(in_piece(std::min(p + q, 12) + 1), (u - U[su]) / du, (v - V[sv]) / dv, threshold, p,
+                                   q);
 }
 
 NurbsSurface insert_knot_u(const NurbsSurface& surface, double u, int times) {

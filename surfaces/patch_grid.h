@@ -114,17 +114,6 @@ void check_samples_output(std::span<const Vec2> uvs, const GridSamplesView& out)
 /// B_i^n(t) and d/dt B_i^n(t) for i = 0..n into values[0..n], derivatives[0..n].
 void bernstein_values_and_derivatives(int n, double t, double* values, double* derivatives);
 
-/// When evaluate_grid takes a normal or a tangent for degenerate, for degrees (n, m) and a net
-/// in `box`: |F_u x F_v| <= normal, a tangent's part <= derivative. Relative to the net's size s
-/// (its box diagonal), and never below the rounding of the Bernstein sums, which grows with the
-/// net's distance R from the origin: F_u = sum_k B_k' P_k carries about 4 d (d + 1) eps R of
-/// noise (d = max(n, m)) even where it vanishes exactly (a pole); `noise_factor` scales that
-/// noise (a rational patch's quotient rule adds to it).
-struct DegeneracyThresholds {
-  double normal;
-  double derivative;
-};
-DegeneracyThresholds degeneracy_thresholds(int n, int m, const Eigen::AlignedBox3d& box, double noise_factor = 1.0);
 
 /// F, F_u and F_v at (u, v) of the net `points` (P_ij at i + (n+1) j; Vec3 or homogeneous Vec4)
 /// by the Bernstein sums: the point evaluators' loop for any degrees.

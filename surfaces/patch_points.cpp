@@ -7,7 +7,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 #include "core/assert.h"
 #include "core/errors.h"
@@ -65,17 +64,6 @@ void bernstein_values_and_derivatives(int n, double t, double* values, double* d
     derivatives[i] = n * (left - right);
   }
   raise_bernstein_degree(n, t, values);
-}
-
-DegeneracyThresholds degeneracy_thresholds(int n, int m, const Eigen::AlignedBox3d& box, double noise_factor) {
-  const double scale = box.diagonal().norm();
-  const double reach = box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).norm();
-  const int d = std::max({n, m, 1});
-  // A sum of 2 (d + 1) terms of weights |B_k'| summing to at most 2 d, each |P_k| <= R.
-  const double derivative_noise = noise_factor * 4.0 * d * (d + 1) * std::numeric_limits<double>::epsilon() * reach;
-  // |F_u x F_v| takes each derivative's noise times the other derivative, |F_u| <= d s.
-  return {std::max(1e-12 * std::max(n * m, 1) * scale * scale, 2.0 * derivative_noise * d * scale),
-          std::max(1e-12 * d * scale, derivative_noise)};
 }
 
 }  // namespace detail
@@ -234,10 +222,7 @@ void evaluate_samples(const BezierPatch3& patch, std::span<const Vec2> uvs, Grid
   detail::check_samples_output(uvs, out);
   const int n = patch.degree_u();
   const int m = patch.degree_v();
-  // Degeneracy is judged as in evaluate_grid: relative to the net's size.
-  Eigen::AlignedBox3d box(patch.control_points().front());
-  for (const Vec3& p : patch.control_points()) box.extend(p);
-  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(n, m, box);
+  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(patch);
   // The usual degrees (the teapot's are 3) unrolled.
   if ((n == 1 && evaluate_samples_fixed_u<1>(m, patch, uvs, out, threshold, derivative_threshold)) ||
       (n == 2 && evaluate_samples_fixed_u<2>(m, patch, uvs, out, threshold, derivative_threshold)) ||

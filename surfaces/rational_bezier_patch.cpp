@@ -67,20 +67,7 @@ Vec3 RationalBezierPatch::evaluate(double u, double v) const {
 }
 
 PartialDerivatives<3> partial_derivatives(const RationalBezierPatch& patch, double u, double v, int order) {
-  // Taken about the net's first point o (F - o has the net P_k - o with the same weights): the
-  // quotient rule's terms F w_u cancel to rounding of F's size, which far from the origin would
-  // swamp a vanishing F_u (a pole 1e6 away gave a normal 0.07 rad off).
-  const std::vector<Vec4>& H = patch.homogeneous().control_points();
-  const Vec3 o = H.front().head<3>() / H.front()[3];
-  std::vector<Vec4> centred(H.size());
-  for (std::size_t k = 0; k < H.size(); ++k) {
-    centred[k].head<3>() = (H[k].head<3>() / H[k][3] - o) * H[k][3];
-    centred[k][3] = H[k][3];
-  }
-  const BezierPatch4 about_o(patch.degree_u(), patch.degree_v(), std::move(centred));
-  PartialDerivatives<3> F = detail::projected_partial_derivatives(partial_derivatives(about_o, u, v, order));
-  F.at(0, 0) += o;
-  return F;
+  return detail::projected_partial_derivatives(partial_derivatives(patch.homogeneous(), u, v, order));
 }
 
 namespace detail {

@@ -6,25 +6,6 @@
 #include "surfaces/patch_grid.h"
 
 namespace patchwork {
-namespace {
-
-// Degeneracy is judged as in unit_normal: relative to the size of the net of points P_ij, and
-// above the rounding of F_u = (H_u - F w_u) / w, whose three noisy terms (H_u's, F's times w_u,
-// w_u's times F) are each at most w_max / w_min times the polynomial sums' noise.
-detail::DegeneracyThresholds rational_thresholds(const RationalBezierPatch& patch) {
-  const BezierPatch4& H = patch.homogeneous();
-  Eigen::AlignedBox3d box(H.control_points().front().head<3>() / H.control_points().front()[3]);
-  double w_min = H.control_points().front()[3];
-  double w_max = w_min;
-  for (const Vec4& h : H.control_points()) {
-    box.extend(Vec3(h.head<3>() / h[3]));
-    w_min = std::min(w_min, h[3]);
-    w_max = std::max(w_max, h[3]);
-  }
-  return detail::degeneracy_thresholds(patch.degree_u(), patch.degree_v(), box, 3.0 * w_max / w_min);
-}
-
-}  // namespace
 
 void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& weights, GridSamplesView out) {
   const int n = patch.degree_u();
@@ -33,7 +14,7 @@ void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& wei
   const std::size_t count_u = weights.us().size();
   const std::size_t count_v = weights.vs().size();
   const BezierPatch4& H = patch.homogeneous();
-  const auto [threshold, derivative_threshold] = rational_thresholds(patch);
+  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(patch);
   std::vector<Vec4> Q(static_cast<std::size_t>(n) + 1);
   std::vector<Vec4> dQ(static_cast<std::size_t>(n) + 1);
   for (std::size_t b = 0; b < count_v; ++b) {
@@ -72,7 +53,7 @@ void evaluate_samples(const RationalBezierPatch& patch, std::span<const Vec2> uv
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   const BezierPatch4& H = patch.homogeneous();
-  const auto [threshold, derivative_threshold] = rational_thresholds(patch);
+  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(patch);
   for (std::size_t k = 0; k < uvs.size(); ++k) {
     const double u = uvs[k].x();
     const double v = uvs[k].y();

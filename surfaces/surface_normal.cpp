@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "core/errors.h"
@@ -12,12 +13,6 @@ namespace {
 // Highest order of N^(k) tried: enough for any collapse of a patch of degrees up to (n, m).
 int max_normal_order(int n, int m) { return std::min(n + m, 12); }
 
-template <int Dim>
-double net_size(const std::vector<Point<Dim>>& points) {
-  Eigen::AlignedBox<double, Dim> box(points.front());
-  for (const auto& p : points) box.extend(p);
-  return box.diagonal().norm();
-}
 
 // D^j applied to d^(a0,b0) F: sum_l C(j,l) du^l dv^(j-l) d^(a0+l, b0+j-l) F.
 Vec3 directional(const PartialDerivatives<3>& F, int a0, int b0, int j, double du, double dv) {
@@ -40,12 +35,44 @@ std::pair<double, double> towards_centre(double u, double v) {
 
 namespace detail {
 
-Vec3 limit_unit_normal(const PartialDerivatives<3>& F, double u, double v, double scale, int n, int m) {
+DegeneracyThresholds degeneracy_thresholds(int n, int m, const Eigen::AlignedBox3d& box, bool rational,
+                                           double weight_ratio) {
+  const double scale = box.diagonal().norm();
+  const double reach = box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).norm();
+  const int d = std::max({n, m, 1});
+  // A sum of 2 (d + 1) terms of weights |B_k'| summing to at most 2 d, each |P_k| <= R.
+  const double noise = (rational ? 3.0 * weight_ratio : 1.0) * 4.0 * d * (d + 1) *
+                       std::numeric_limits<double>::epsilon() * reach;
+  // |F_u x F_v| takes each derivative's noise times the other derivative, |F_u| <= d s (times
+  // the weight ratio for a rational patch).
+  const double derivative = d * scale * (rational ? weight_ratio : 1.0);
+  return {std::max(1e-12 * std::max(n * m, 1) * scale * scale, 2.0 * noise * derivative),
+          std::max(1e-12 * d * scale, noise)};
+}
+
+DegeneracyThresholds degeneracy_thresholds(const BezierPatch3& patch) {
+  Eigen::AlignedBox3d box(patch.control_points().front());
+  for (const Vec3& p : patch.control_points()) box.extend(p);
+  return degeneracy_thresholds(patch.degree_u(), patch.degree_v(), box);
+}
+
+DegeneracyThresholds degeneracy_thresholds(const RationalBezierPatch& patch) {
+  const std::vector<Vec4>& H = patch.homogeneous().control_points();
+  Eigen::AlignedBox3d box(H.front().head<3>() / H.front()[3]);
+  double w_min = H.front()[3];
+  double w_max = w_min;
+  for (const Vec4& h : H) {
+    box.extend(Vec3(h.head<3>() / h[3]));
+    w_min = std::min(w_min, h[3]);
+    w_max = std::max(w_max, h[3]);
+  }
+  return degeneracy_thresholds(patch.degree_u(), patch.degree_v(), box, true, w_max / w_min);
+}
+
+Vec3 limit_unit_normal(const PartialDerivatives<3>& F, double u, double v, double threshold, int n, int m) {
   const Vec3 first = F.at(1, 0).cross(F.at(0, 1));
-  // n ~ n m |P|^2 in size; below 1e-12 of that it is rounding noise, and for each further order
-  // the derivatives grow by about max(n, m).
+  // For each further order the derivatives (and their rounding) grow by about max(n, m).
   const double degree = std::max({n, m, 1});
-  const double threshold = 1e-12 * std::max(n * m, 1) * scale * scale;
   if (first.norm() > threshold) return first.normalized();
   const auto [du, dv] = towards_centre(u, v);
   for (int k = 1; k + 1 <= F.order(); ++k) {
@@ -78,49 +105,38 @@ namespace {
 // not decide. partial_derivatives' low orders do not depend on the order asked for, so the
 // answer is the same bit for bit.
 template <class Patch>
-Vec3 staged_limit_normal(const Patch& patch, double u, double v, double scale) {
+Vec3 staged_limit_normal(const Patch& patch, double u, double v, double threshold) {
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   const int full = max_normal_order(n, m) + 1;
   if (full > 2) {
     try {
-      return detail::limit_unit_normal(partial_derivatives(patch, u, v, 2), u, v, scale, n, m);
+      return detail::limit_unit_normal(partial_derivatives(patch, u, v, 2), u, v, threshold, n, m);
     } catch (const NumericalError&) {
       // Degenerate to a higher order: the full table below.
     }
   }
-  return detail::limit_unit_normal(partial_derivatives(patch, u, v, full), u, v, scale, n, m);
+  return detail::limit_unit_normal(partial_derivatives(patch, u, v, full), u, v, threshold, n, m);
 }
 
 }  // namespace
 
 Vec3 unit_normal(const BezierPatch3& patch, double u, double v) {
-  const int n = patch.degree_u();
-  const int m = patch.degree_v();
-  const double scale = net_size(patch.control_points());
+  const double threshold = detail::degeneracy_thresholds(patch).normal;
   const Vec3 first = normal(patch, u, v);
-  if (first.norm() > 1e-12 * std::max(n * m, 1) * scale * scale) return first.normalized();
-  return staged_limit_normal(patch, u, v, scale);
+  if (first.norm() > threshold) return first.normalized();
+  return staged_limit_normal(patch, u, v, threshold);
 }
 
 namespace {
-
-double net_scale(const BezierPatch3& patch) { return net_size(patch.control_points()); }
-double net_scale(const RationalBezierPatch& patch) {
-  const std::vector<Vec4>& H = patch.homogeneous().control_points();
-  Eigen::AlignedBox3d box(H.front().head<3>() / H.front()[3]);
-  for (const Vec4& h : H) box.extend(Vec3(h.head<3>() / h[3]));
-  return box.diagonal().norm();
-}
 
 // unit_derivative_direction for either kind of patch (both have partial_derivatives).
 template <class Patch>
 Vec3 derivative_direction(const Patch& patch, double u, double v, bool along_u) {
   const int n = patch.degree_u();
   const int m = patch.degree_v();
-  const double scale = net_scale(patch);
   const double degree = std::max({n, m, 1});
-  const double threshold = 1e-12 * degree * scale;
+  const double threshold = detail::degeneracy_thresholds(patch).derivative;
   const PartialDerivatives<3> F = partial_derivatives(patch, u, v, std::min(n + m, 12) + 1);
   const int a0 = along_u ? 1 : 0;
   const int b0 = along_u ? 0 : 1;
@@ -167,22 +183,20 @@ Vec4 unit_tangent(const RationalBezierPatch& patch, double u, double v, const Ve
 }
 
 Vec3 unit_normal(const RationalBezierPatch& patch, double u, double v) {
-  const int n = patch.degree_u();
-  const int m = patch.degree_v();
-  const double scale = net_scale(patch);
+  const double threshold = detail::degeneracy_thresholds(patch).normal;
   const Vec3 first = normal(patch, u, v);
-  if (first.norm() > 1e-12 * std::max(n * m, 1) * scale * scale) return first.normalized();
-  return staged_limit_normal(patch, u, v, scale);
+  if (first.norm() > threshold) return first.normalized();
+  return staged_limit_normal(patch, u, v, threshold);
 }
 
 namespace detail {
 
 Vec3 degenerate_unit_normal(const BezierPatch3& patch, double u, double v) {
-  return staged_limit_normal(patch, u, v, net_size(patch.control_points()));
+  return staged_limit_normal(patch, u, v, degeneracy_thresholds(patch).normal);
 }
 
 Vec3 degenerate_unit_normal(const RationalBezierPatch& patch, double u, double v) {
-  return staged_limit_normal(patch, u, v, net_scale(patch));
+  return staged_limit_normal(patch, u, v, degeneracy_thresholds(patch).normal);
 }
 
 }  // namespace detail

@@ -43,9 +43,28 @@ Vec4 unit_tangent(const RationalBezierPatch& patch, double u, double v, const Ve
 
 namespace detail {
 
-/// The limit unit normal from a derivative table of order >= 1 (see the file comment); `scale`
-/// is the patch's size (vanishing is judged relative to it), n and m its degrees.
-Vec3 limit_unit_normal(const PartialDerivatives<3>& derivatives, double u, double v, double scale, int n, int m);
+/// When F_u x F_v counts as vanishing (|F_u x F_v| <= normal) and a first derivative or a
+/// tangent's part (<= derivative), for degrees (n, m) and a net in `box` (docs/surfaces.md):
+/// relative to the net's size s (its box diagonal), and never below the rounding of the
+/// derivatives' sums, which grows with the net's distance R from the origin: a derivative taken
+/// from the control points carries about 4 d (d + 1) eps R of noise (d = max(n, m)) even where it
+/// vanishes exactly. A rational patch (F = H / w, weights w_max / w_min = weight_ratio apart)
+/// has three such terms in its quotient rule, each up to weight_ratio larger, and derivatives up
+/// to weight_ratio larger.
+struct DegeneracyThresholds {
+  double normal;
+  double derivative;
+};
+DegeneracyThresholds degeneracy_thresholds(int n, int m, const Eigen::AlignedBox3d& box, bool rational = false,
+                                           double weight_ratio = 1.0);
+/// degeneracy_thresholds of a patch's net.
+DegeneracyThresholds degeneracy_thresholds(const BezierPatch3& patch);
+/// degeneracy_thresholds of a rational patch's net of points P_ij and its weights.
+DegeneracyThresholds degeneracy_thresholds(const RationalBezierPatch& patch);
+
+/// The limit unit normal from a derivative table of order >= 1 (see the file comment);
+/// `threshold` is the patch's degeneracy_thresholds(...).normal, n and m its degrees.
+Vec3 limit_unit_normal(const PartialDerivatives<3>& derivatives, double u, double v, double threshold, int n, int m);
 
 /// unit_normal where the caller has found F_u x F_v vanishing (a grid sample at a pole): the
 /// limit normal without evaluating the first-order normal again; unit_normal's value there.

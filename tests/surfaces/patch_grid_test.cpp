@@ -138,11 +138,14 @@ RC_GTEST_PROP(PatchGrid, PointListMatchesTheGridSamples, ()) {
   }
 }
 
-// A pole far from the origin: F_u = sum_k B_k'(u) P_k over a collapsed row of equal points is
-// rounding noise of size eps |P|, not zero, so a threshold relative to the net's size alone took
-// it for a regular derivative and the normal was that noise's (2.2 rad off at an offset of 1e6).
-// Translated copies of a cone-like patch must keep the untranslated normals (to rounding) on its
-// collapsed side, in the grid, the scattered samples and the rational evaluators.
+// A pole far from the origin: F_u = sum_k B_k'(u) P_k over a collapsed row is rounding noise of
+// size eps |P|, not zero (and where the row's points differ by rounding, as after a split, so is
+// F_u from differences), so a threshold relative to the net's size alone took it for a regular
+// derivative and the normal was that noise's (2.2 rad off at an offset of 1e6). Translated copies
+// of a cone-like patch, and of a piece split from it, must keep the unmoved normals (to rounding)
+// on the collapsed side: in the grid, the scattered samples, unit_normal and the rational
+// evaluators. The offsets include one whose coordinates are not integers (the rational net's
+// H / w then does not give back P exactly).
 TEST(PatchGrid, PoleNormalsDoNotDependOnTheDistanceFromTheOrigin) {
   const auto net = [](const Vec3& offset) {
     std::vector<Vec3> points;
@@ -160,27 +163,35 @@ TEST(PatchGrid, PoleNormalsDoNotDependOnTheDistanceFromTheOrigin) {
   std::vector<Vec2> uvs;
   for (const double v : vs)
     for (const double u : us) uvs.emplace_back(u, v);
-  const std::vector<double> unit_weights(16, 1.0);
   std::vector<double> varied_weights;
   for (int k = 0; k < 16; ++k) varied_weights.push_back(1.0 + 0.25 * (k % 4));
-  const BezierPatch3 origin = net(Vec3::Zero());
-  const PatchGridSamples expected = evaluate_grid(origin, weights);
-  const RationalBezierPatch origin_rational(3, 3, origin.control_points(), varied_weights);
-  std::vector<Vec3> expected_rational(uvs.size()), points(uvs.size());
-  evaluate_samples(origin_rational, uvs, {points, expected_rational, {}});
-  for (const double offset : {1e3, 1e6, 1e9}) {
-    const BezierPatch3 far = net(offset * Vec3(1.0, 0.7, -0.3));
-    const PatchGridSamples grid = evaluate_grid(far, weights);
-    std::vector<Vec3> samples(uvs.size()), unit_rational(uvs.size()), rational(uvs.size());
-    evaluate_samples(far, uvs, {points, samples, {}});
-    evaluate_samples(RationalBezierPatch(3, 3, far.control_points(), unit_weights), uvs, {points, unit_rational, {}});
-    evaluate_samples(RationalBezierPatch(3, 3, far.control_points(), varied_weights), uvs, {points, rational, {}});
-    for (std::size_t k = 0; k < uvs.size(); ++k) {
-      SCOPED_TRACE(::testing::Message() << "offset " << offset << " at (" << uvs[k].x() << ", " << uvs[k].y() << ")");
-      EXPECT_LT((grid.normals[k] - expected.normals[k]).norm(), 1e-6);
-      EXPECT_LT((samples[k] - expected.normals[k]).norm(), 1e-6);
-      EXPECT_LT((unit_rational[k] - expected.normals[k]).norm(), 1e-6);
-      EXPECT_LT((rational[k] - expected_rational[k]).norm(), 1e-6);
+  // The normals of a net: grid, samples, unit_normal, then the same of its rational form.
+  const auto normals_of = [&](const BezierPatch3& patch) {
+    std::vector<Vec3> all = evaluate_grid(patch, weights).normals;
+    std::vector<Vec3> points(uvs.size()), samples(uvs.size()), rational(uvs.size());
+    evaluate_samples(patch, uvs, {points, samples, {}});
+    const RationalBezierPatch weighted(3, 3, patch.control_points(), varied_weights);
+    evaluate_samples(weighted, uvs, {points, rational, {}});
+    all.insert(all.end(), samples.begin(), samples.end());
+    for (const Vec2& uv : uvs) all.push_back(unit_normal(patch, uv.x(), uv.y()));
+    all.insert(all.end(), rational.begin(), rational.end());
+    std::vector<Vec3> rational_grid(uvs.size());
+    evaluate_grid(weighted, weights, {points, rational_grid, {}});
+    all.insert(all.end(), rational_grid.begin(), rational_grid.end());
+    for (const Vec2& uv : uvs) all.push_back(unit_normal(weighted, uv.x(), uv.y()));
+    return all;
+  };
+  const auto split = [](const BezierPatch3& patch) { return subpatch(patch, 0.2, 0.9, 0.0, 0.7); };
+  const std::vector<Vec3> expected = normals_of(net(Vec3::Zero()));
+  const std::vector<Vec3> expected_split = normals_of(split(net(Vec3::Zero())));
+  for (const Vec3& offset : {Vec3(1e3, 700, -300), Vec3(1e6, 7e5, -3e5), Vec3(1e9, 7e8, -3e8),
+                             Vec3(0.0, 0.0, 1835008.0 + 7.0 * std::ldexp(1.0, -32))}) {
+    const std::vector<Vec3> moved = normals_of(net(offset));
+    const std::vector<Vec3> moved_split = normals_of(split(net(offset)));
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+      SCOPED_TRACE(::testing::Message() << "offset " << offset.transpose() << ", normal " << k);
+      EXPECT_LT((moved[k] - expected[k]).norm(), 1e-6);
+      EXPECT_LT((moved_split[k] - expected_split[k]).norm(), 1e-6);
     }
   }
 }
