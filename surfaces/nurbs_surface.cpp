@@ -163,7 +163,7 @@ Vec3 unit_normal(const NurbsSurface& surface, double u, double v) {
       w_max = std::max(w_max, surface.weight(i, j));
     }
   }
-  const double threshold = detail::degeneracy_thresholds(p, q, box, true, w_max / w_min).normal;
+  const detail::DegeneracyThresholds thresholds = detail::degeneracy_thresholds(p, q, box, true, w_max / w_min);
   const auto in_piece = [&](int order) {
     PartialDerivatives<3> F = partial_derivatives(surface, u, v, order);
     for (int a = 0; a <= order; ++a) {
@@ -172,10 +172,11 @@ Vec3 unit_normal(const NurbsSurface& surface, double u, double v) {
     return F;
   };
   const PartialDerivatives<3> first = in_piece(1);
-  const Vec3 normal = first.at(1, 0).cross(first.at(0, 1));
-  if (normal.norm() > threshold) return normal.normalized();
-  return detail::limit_unit_normal(in_piece(std::min(p + q, 12) + 1), (u - U[su]) / du, (v - V[sv]) / dv, threshold, p,
-                                   q);
+  if (!detail::first_normal_vanishes(first.at(1, 0), first.at(0, 1), thresholds)) {
+    return first.at(1, 0).cross(first.at(0, 1)).normalized();
+  }
+  return detail::limit_unit_normal(in_piece(std::min(p + q, 12) + 1), (u - U[su]) / du, (v - V[sv]) / dv, thresholds,
+                                   p, q);
 }
 
 NurbsSurface insert_knot_u(const NurbsSurface& surface, double u, int times) {

@@ -351,7 +351,9 @@ void evaluate_grid_with(const BezierPatch3& patch, const PatchGridWeights& weigh
   const std::size_t count_v = weights.vs().size();
   const bool with_tangents = !out.tangents.empty();
   // Degeneracy is judged as in unit_normal.
-  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(patch);
+  const detail::DegeneracyThresholds limits = detail::degeneracy_thresholds(patch);
+  const double threshold = limits.normal;
+  const double derivative_threshold = limits.derivative;
   // The usual degrees (the teapot's are 3) without tangents take the vectorised path.
   if (!with_tangents && count_u == 1 && count_v > 1 && m >= 1 && m <= 3) {
     if (m == 1) evaluate_grid_column<1>(patch, weights, out, threshold, allow_avx2);

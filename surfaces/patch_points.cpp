@@ -222,7 +222,9 @@ void evaluate_samples(const BezierPatch3& patch, std::span<const Vec2> uvs, Grid
   detail::check_samples_output(uvs, out);
   const int n = patch.degree_u();
   const int m = patch.degree_v();
-  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(patch);
+  const detail::DegeneracyThresholds limits = detail::degeneracy_thresholds(patch);
+  const double threshold = limits.normal;
+  const double derivative_threshold = limits.derivative;
   // The usual degrees (the teapot's are 3) unrolled.
   if ((n == 1 && evaluate_samples_fixed_u<1>(m, patch, uvs, out, threshold, derivative_threshold)) ||
       (n == 2 && evaluate_samples_fixed_u<2>(m, patch, uvs, out, threshold, derivative_threshold)) ||

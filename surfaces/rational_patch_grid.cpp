@@ -14,7 +14,9 @@ void evaluate_grid(const RationalBezierPatch& patch, const PatchGridWeights& wei
   const std::size_t count_u = weights.us().size();
   const std::size_t count_v = weights.vs().size();
   const BezierPatch4& H = patch.homogeneous();
-  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(patch);
+  const detail::DegeneracyThresholds limits = detail::degeneracy_thresholds(patch);
+  const double threshold = limits.normal;
+  const double derivative_threshold = limits.derivative;
   std::vector<Vec4> Q(static_cast<std::size_t>(n) + 1);
   std::vector<Vec4> dQ(static_cast<std::size_t>(n) + 1);
   for (std::size_t b = 0; b < count_v; ++b) {
@@ -53,7 +55,9 @@ void evaluate_samples(const RationalBezierPatch& patch, std::span<const Vec2> uv
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   const BezierPatch4& H = patch.homogeneous();
-  const auto [threshold, derivative_threshold] = detail::degeneracy_thresholds(patch);
+  const detail::DegeneracyThresholds limits = detail::degeneracy_thresholds(patch);
+  const double threshold = limits.normal;
+  const double derivative_threshold = limits.derivative;
   for (std::size_t k = 0; k < uvs.size(); ++k) {
     const double u = uvs[k].x();
     const double v = uvs[k].y();

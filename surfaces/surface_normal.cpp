@@ -46,8 +46,12 @@ DegeneracyThresholds degeneracy_thresholds(int n, int m, const Eigen::AlignedBox
   // |F_u x F_v| takes each derivative's noise times the other derivative, |F_u| <= d s (times
   // the weight ratio for a rational patch).
   const double derivative = d * scale * (rational ? weight_ratio : 1.0);
-  return {std::max(1e-12 * std::max(n * m, 1) * scale * scale, 2.0 * noise * derivative),
-          std::max(1e-12 * d * scale, noise)};
+  const double relative = 1e-12 * std::max(n * m, 1) * scale * scale;
+  return {std::max(relative, 2.0 * noise * derivative), std::max(1e-12 * d * scale, noise), relative, noise};
+}
+
+bool first_normal_vanishes(const Vec3& du, const Vec3& dv, const DegeneracyThresholds& thresholds) {
+  return du.cross(dv).norm() <= std::max(thresholds.relative, 2.0 * thresholds.noise * (du.norm() + dv.norm()));
 }
 
 DegeneracyThresholds degeneracy_thresholds(const BezierPatch3& patch) {
@@ -69,18 +73,25 @@ DegeneracyThresholds degeneracy_thresholds(const RationalBezierPatch& patch) {
   return degeneracy_thresholds(patch.degree_u(), patch.degree_v(), box, true, w_max / w_min);
 }
 
-Vec3 limit_unit_normal(const PartialDerivatives<3>& F, double u, double v, double threshold, int n, int m) {
-  const Vec3 first = F.at(1, 0).cross(F.at(0, 1));
-  // For each further order the derivatives (and their rounding) grow by about max(n, m).
+Vec3 limit_unit_normal(const PartialDerivatives<3>& F, double u, double v, const DegeneracyThresholds& thresholds,
+                       int n, int m) {
+  if (!first_normal_vanishes(F.at(1, 0), F.at(0, 1), thresholds)) return F.at(1, 0).cross(F.at(0, 1)).normalized();
+  // For each further order the derivatives (and their rounding) grow by about max(n, m); N_k's
+  // rounding is each factor's rounding times the other factor.
   const double degree = std::max({n, m, 1});
-  if (first.norm() > threshold) return first.normalized();
   const auto [du, dv] = towards_centre(u, v);
   for (int k = 1; k + 1 <= F.order(); ++k) {
     Vec3 Nk = Vec3::Zero();
+    double rounding = 0.0;
     for (int j = 0; j <= k; ++j) {
-      Nk += binomial(k, j) * directional(F, 1, 0, j, du, dv).cross(directional(F, 0, 1, k - j, du, dv));
+      const Vec3 a = directional(F, 1, 0, j, du, dv);
+      const Vec3 b = directional(F, 0, 1, k - j, du, dv);
+      Nk += binomial(k, j) * a.cross(b);
+      rounding += binomial(k, j) * (std::pow(degree, j) * b.norm() + std::pow(degree, k - j) * a.norm());
     }
-    if (Nk.norm() > threshold * std::pow(degree, k)) return Nk.normalized();
+    if (Nk.norm() > std::max(thresholds.relative * std::pow(degree, k), 2.0 * thresholds.noise * rounding)) {
+      return Nk.normalized();
+    }
   }
   throw NumericalError(message("unit_normal: the patch is degenerate around (", u, ", ", v, "): no normal"));
 }
@@ -105,27 +116,29 @@ namespace {
 // not decide. partial_derivatives' low orders do not depend on the order asked for, so the
 // answer is the same bit for bit.
 template <class Patch>
-Vec3 staged_limit_normal(const Patch& patch, double u, double v, double threshold) {
+Vec3 staged_limit_normal(const Patch& patch, double u, double v, const detail::DegeneracyThresholds& thresholds) {
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   const int full = max_normal_order(n, m) + 1;
   if (full > 2) {
     try {
-      return detail::limit_unit_normal(partial_derivatives(patch, u, v, 2), u, v, threshold, n, m);
+      return detail::limit_unit_normal(partial_derivatives(patch, u, v, 2), u, v, thresholds, n, m);
     } catch (const NumericalError&) {
       // Degenerate to a higher order: the full table below.
     }
   }
-  return detail::limit_unit_normal(partial_derivatives(patch, u, v, full), u, v, threshold, n, m);
+  return detail::limit_unit_normal(partial_derivatives(patch, u, v, full), u, v, thresholds, n, m);
 }
 
 }  // namespace
 
 Vec3 unit_normal(const BezierPatch3& patch, double u, double v) {
-  const double threshold = detail::degeneracy_thresholds(patch).normal;
-  const Vec3 first = normal(patch, u, v);
-  if (first.norm() > threshold) return first.normalized();
-  return staged_limit_normal(patch, u, v, threshold);
+  const detail::DegeneracyThresholds thresholds = detail::degeneracy_thresholds(patch);
+  const PartialDerivatives<3> F = partial_derivatives(patch, u, v, 1);
+  if (!detail::first_normal_vanishes(F.at(1, 0), F.at(0, 1), thresholds)) {
+    return F.at(1, 0).cross(F.at(0, 1)).normalized();
+  }
+  return staged_limit_normal(patch, u, v, thresholds);
 }
 
 namespace {
@@ -183,20 +196,22 @@ Vec4 unit_tangent(const RationalBezierPatch& patch, double u, double v, const Ve
 }
 
 Vec3 unit_normal(const RationalBezierPatch& patch, double u, double v) {
-  const double threshold = detail::degeneracy_thresholds(patch).normal;
-  const Vec3 first = normal(patch, u, v);
-  if (first.norm() > threshold) return first.normalized();
-  return staged_limit_normal(patch, u, v, threshold);
+  const detail::DegeneracyThresholds thresholds = detail::degeneracy_thresholds(patch);
+  const PartialDerivatives<3> F = partial_derivatives(patch, u, v, 1);
+  if (!detail::first_normal_vanishes(F.at(1, 0), F.at(0, 1), thresholds)) {
+    return F.at(1, 0).cross(F.at(0, 1)).normalized();
+  }
+  return staged_limit_normal(patch, u, v, thresholds);
 }
 
 namespace detail {
 
 Vec3 degenerate_unit_normal(const BezierPatch3& patch, double u, double v) {
-  return staged_limit_normal(patch, u, v, degeneracy_thresholds(patch).normal);
+  return staged_limit_normal(patch, u, v, degeneracy_thresholds(patch));
 }
 
 Vec3 degenerate_unit_normal(const RationalBezierPatch& patch, double u, double v) {
-  return staged_limit_normal(patch, u, v, degeneracy_thresholds(patch).normal);
+  return staged_limit_normal(patch, u, v, degeneracy_thresholds(patch));
 }
 
 }  // namespace detail

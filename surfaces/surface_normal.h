@@ -50,10 +50,14 @@ namespace detail {
 /// from the control points carries about 4 d (d + 1) eps R of noise (d = max(n, m)) even where it
 /// vanishes exactly. A rational patch (F = H / w, weights w_max / w_min = weight_ratio apart)
 /// has three such terms in its quotient rule, each up to weight_ratio larger, and derivatives up
-/// to weight_ratio larger.
+/// to weight_ratio larger. `normal` and `derivative` hold for the whole patch (the grid kernels'
+/// test, which sends doubtful samples to the limit normal); first_normal_vanishes and
+/// limit_unit_normal judge each point by its own derivatives' sizes.
 struct DegeneracyThresholds {
-  double normal;
-  double derivative;
+  double normal;      // |F_u x F_v| below it vanishes anywhere on the patch
+  double derivative;  // |F_u| (a tangent's part) below it vanishes
+  double relative;    // 1e-12 n m s^2: the part relative to the net's size
+  double noise;       // the rounding of one first derivative, 4 d (d + 1) eps R (times 3 w_max / w_min)
 };
 DegeneracyThresholds degeneracy_thresholds(int n, int m, const Eigen::AlignedBox3d& box, bool rational = false,
                                            double weight_ratio = 1.0);
@@ -62,9 +66,14 @@ DegeneracyThresholds degeneracy_thresholds(const BezierPatch3& patch);
 /// degeneracy_thresholds of a rational patch's net of points P_ij and its weights.
 DegeneracyThresholds degeneracy_thresholds(const RationalBezierPatch& patch);
 
-/// The limit unit normal from a derivative table of order >= 1 (see the file comment);
-/// `threshold` is the patch's degeneracy_thresholds(...).normal, n and m its degrees.
-Vec3 limit_unit_normal(const PartialDerivatives<3>& derivatives, double u, double v, double threshold, int n, int m);
+/// Whether F_u x F_v vanishes at a point with these first derivatives: below the net-relative
+/// part or below the rounding it can carry there, 2 noise (|F_u| + |F_v|).
+bool first_normal_vanishes(const Vec3& du, const Vec3& dv, const DegeneracyThresholds& thresholds);
+
+/// The limit unit normal from a derivative table of order >= 1 (see the file comment), judged by
+/// the patch's degeneracy_thresholds; n and m its degrees.
+Vec3 limit_unit_normal(const PartialDerivatives<3>& derivatives, double u, double v,
+                       const DegeneracyThresholds& thresholds, int n, int m);
 
 /// unit_normal where the caller has found F_u x F_v vanishing (a grid sample at a pole): the
 /// limit normal without evaluating the first-order normal again; unit_normal's value there.

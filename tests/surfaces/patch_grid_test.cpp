@@ -194,6 +194,28 @@ TEST(PatchGrid, PoleNormalsDoNotDependOnTheDistanceFromTheOrigin) {
       EXPECT_LT((moved_split[k] - expected_split[k]).norm(), 1e-6);
     }
   }
+  // Weights 100 apart: the patch-wide bound grows with their ratio, but each point is judged by
+  // its own derivatives, so the pole still has its limit normal (it threw "no normal" when the
+  // higher orders were held to the patch-wide bound).
+  std::vector<double> wide_weights;
+  for (int k = 0; k < 16; ++k) wide_weights.push_back(1.0 + 33.0 * (k % 4));
+  const auto wide_normals = [&](const BezierPatch3& patch) {
+    const RationalBezierPatch weighted(3, 3, patch.control_points(), wide_weights);
+    std::vector<Vec3> points(uvs.size()), all(uvs.size());
+    evaluate_samples(weighted, uvs, {points, all, {}});
+    for (const Vec2& uv : uvs) all.push_back(unit_normal(weighted, uv.x(), uv.y()));
+    return all;
+  };
+  const std::vector<Vec3> expected_wide = wide_normals(net(Vec3::Zero()));
+  // At 1e8 the net itself holds the normal to about w_max / w_min eps R = 2e-6 only.
+  for (const Vec3& offset : {Vec3(1e3, 700, -300), Vec3(1e6, 7e5, -3e5), Vec3(0.0, 0.0, 1e6 + 0.1),
+                             Vec3(1e8, 7e7, -3e7 + 0.1)}) {
+    const std::vector<Vec3> moved = wide_normals(net(offset));
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+      SCOPED_TRACE(::testing::Message() << "weights 1-100, offset " << offset.transpose() << ", normal " << k);
+      EXPECT_LT((moved[k] - expected_wide[k]).norm(), offset.norm() > 1e7 ? 1e-4 : 1e-6);
+    }
+  }
 }
 
 TEST(PatchGrid, PointListGetsTheLimitNormalAndRefusesBadInput) {

@@ -48,7 +48,7 @@ TEST(SurfaceNormal, StagedLimitNormalIsTheFullOrdersBitForBit) {
   const auto full = [](const auto& patch, double u, double v) {
     const int order = std::min(patch.degree_u() + patch.degree_v(), 12) + 1;
     return detail::limit_unit_normal(partial_derivatives(patch, u, v, order), u, v,
-                                     detail::degeneracy_thresholds(patch).normal, patch.degree_u(), patch.degree_v());
+                                     detail::degeneracy_thresholds(patch), patch.degree_u(), patch.degree_v());
   };
   // A cubic-by-cubic dome over z = 1 - x^2 - y^2 whose rows j = 0 and j = 1 are the apex.
   std::vector<Vec3> dome;
@@ -72,7 +72,7 @@ TEST(SurfaceNormal, StagedLimitNormalIsTheFullOrdersBitForBit) {
   }
   // The double pole needs more than order 2: with only that much there is no normal.
   EXPECT_THROW(detail::limit_unit_normal(partial_derivatives(double_pole, 0.5, 0.0, 2), 0.5, 0.0,
-                                         detail::degeneracy_thresholds(double_pole).normal, 3, 3),
+                                         detail::degeneracy_thresholds(double_pole), 3, 3),
                NumericalError);
 }
 
