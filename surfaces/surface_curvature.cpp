@@ -64,8 +64,11 @@ struct Pole {
   double hi;
 };
 
-bool collapsed(const std::vector<Vec3>& row, double size) {
-  return std::all_of(row.begin(), row.end(), [&](const Vec3& p) { return (p - row.front()).norm() <= 1e-12 * size; });
+// Equal to rounding: 1e-12 of the net's size, or the derivatives' rounding far from the origin
+// (a split or knot insertion leaves a pole's points some ulps apart there).
+bool collapsed(const std::vector<Vec3>& row, double size, const detail::DegeneracyThresholds& thresholds) {
+  const double tolerance = std::max(1e-12 * size, thresholds.noise);
+  return std::all_of(row.begin(), row.end(), [&](const Vec3& p) { return (p - row.front()).norm() <= tolerance; });
 }
 
 // The pole fit of the file comment; `derivatives(u, v)` gives the partial derivatives of order 2.
@@ -109,9 +112,10 @@ SurfaceCurvature pole_curvature(const Derivatives& derivatives, const Vec3& n, c
 // poles: regular where F_u x F_v does not vanish, else the pole fit, else undefined.
 template <class Derivatives, class UnitNormal>
 SurfaceCurvature curvature_of(const Derivatives& derivatives, const UnitNormal& unit_normal,
-                              const std::optional<Pole>& pole, double u, double v, double size, int n, int m) {
+                              const std::optional<Pole>& pole, double u, double v, double size,
+                              const detail::DegeneracyThresholds& thresholds, int n, int m) {
   const PartialDerivatives<3> F = derivatives(u, v);
-  if (F.at(1, 0).cross(F.at(0, 1)).norm() > 1e-12 * std::max(n * m, 1) * size * size) {
+  if (!detail::first_normal_vanishes(F.at(1, 0), F.at(0, 1), thresholds)) {
     return detail::regular_curvature(F, size);
   }
   if (!pole) return undefined_curvature();
@@ -126,11 +130,12 @@ SurfaceCurvature curvature_of(const Derivatives& derivatives, const UnitNormal& 
 
 // The pole through (u, v) of a patch on [0,1]^2 whose edge rows are given by `row(edge)`.
 template <class Row>
-std::optional<Pole> patch_pole(const Row& row, double u, double v, double size) {
-  if ((v == 0.0 && collapsed(row(PatchEdge::v0), size)) || (v == 1.0 && collapsed(row(PatchEdge::v1), size))) {
+std::optional<Pole> patch_pole(const Row& row, double u, double v, double size,
+                               const detail::DegeneracyThresholds& t) {
+  if ((v == 0.0 && collapsed(row(PatchEdge::v0), size, t)) || (v == 1.0 && collapsed(row(PatchEdge::v1), size, t))) {
     return Pole{true, v, 0.0, 1.0};
   }
-  if ((u == 0.0 && collapsed(row(PatchEdge::u0), size)) || (u == 1.0 && collapsed(row(PatchEdge::u1), size))) {
+  if ((u == 0.0 && collapsed(row(PatchEdge::u0), size, t)) || (u == 1.0 && collapsed(row(PatchEdge::u1), size, t))) {
     return Pole{false, u, 0.0, 1.0};
   }
   return std::nullopt;
@@ -166,17 +171,21 @@ SurfaceCurvature regular_curvature(const PartialDerivatives<3>& F, double size) 
 SurfaceCurvature curvature(const BezierPatch3& patch, double u, double v) {
   const double size = box_size(patch.control_points());
   const auto row = [&](PatchEdge edge) { return row_from_edge(patch, edge, 0); };
+  const detail::DegeneracyThresholds thresholds = detail::degeneracy_thresholds(patch);
   return curvature_of([&](double s, double t) { return partial_derivatives(patch, s, t, 2); },
-                      [&](double s, double t) { return unit_normal(patch, s, t); }, patch_pole(row, u, v, size), u, v,
-                      size, patch.degree_u(), patch.degree_v());
+                      [&](double s, double t) { return unit_normal(patch, s, t); },
+                      patch_pole(row, u, v, size, thresholds), u, v, size, thresholds, patch.degree_u(),
+                      patch.degree_v());
 }
 
 SurfaceCurvature curvature(const RationalBezierPatch& patch, double u, double v) {
   const double size = box_size(projected(patch.homogeneous().control_points()));
   const auto row = [&](PatchEdge edge) { return projected(row_from_edge(patch.homogeneous(), edge, 0)); };
+  const detail::DegeneracyThresholds thresholds = detail::degeneracy_thresholds(patch);
   return curvature_of([&](double s, double t) { return partial_derivatives(patch, s, t, 2); },
-                      [&](double s, double t) { return unit_normal(patch, s, t); }, patch_pole(row, u, v, size), u, v,
-                      size, patch.degree_u(), patch.degree_v());
+                      [&](double s, double t) { return unit_normal(patch, s, t); },
+                      patch_pole(row, u, v, size, thresholds), u, v, size, thresholds, patch.degree_u(),
+                      patch.degree_v());
 }
 
 SurfaceCurvature curvature(const NurbsSurface& surface, double u, double v) {
@@ -194,16 +203,29 @@ SurfaceCurvature curvature(const NurbsSurface& surface, double u, double v) {
   };
   const KnotVector& U = surface.knots_u();
   const KnotVector& V = surface.knots_v();
+  // The whole net's box and weights (a span's piece lies in its hull).
+  Eigen::AlignedBox3d box(surface.control_point(0, 0));
+  double w_min = surface.weight(0, 0);
+  double w_max = w_min;
+  for (int j = 0; j < surface.count_v(); ++j) {
+    for (int i = 0; i < surface.count_u(); ++i) {
+      box.extend(surface.control_point(i, j));
+      w_min = std::min(w_min, surface.weight(i, j));
+      w_max = std::max(w_max, surface.weight(i, j));
+    }
+  }
+  const detail::DegeneracyThresholds t =
+      detail::degeneracy_thresholds(surface.degree_u(), surface.degree_v(), box, true, w_max / w_min);
   std::optional<Pole> pole;
-  if (V.is_clamped() &&
-      ((v == V.a() && collapsed(row_v(0), size)) || (v == V.b() && collapsed(row_v(surface.count_v() - 1), size)))) {
+  if (V.is_clamped() && ((v == V.a() && collapsed(row_v(0), size, t)) ||
+                         (v == V.b() && collapsed(row_v(surface.count_v() - 1), size, t)))) {
     pole = Pole{true, v, U.a(), U.b()};
-  } else if (U.is_clamped() && ((u == U.a() && collapsed(row_u(0), size)) ||
-                                (u == U.b() && collapsed(row_u(surface.count_u() - 1), size)))) {
+  } else if (U.is_clamped() && ((u == U.a() && collapsed(row_u(0), size, t)) ||
+                                (u == U.b() && collapsed(row_u(surface.count_u() - 1), size, t)))) {
     pole = Pole{false, u, V.a(), V.b()};
   }
   return curvature_of([&](double s, double t) { return partial_derivatives(surface, s, t, 2); },
-                      [&](double s, double t) { return unit_normal(surface, s, t); }, pole, u, v, size,
+                      [&](double s, double t) { return unit_normal(surface, s, t); }, pole, u, v, size, t,
                       surface.degree_u(), surface.degree_v());
 }
 

@@ -20,8 +20,8 @@
 // direction is principal) the directions are the frame e1, e2, and `umbilic` says so; the test is
 // k1 - k2 <= 1e-8 (|k1| + |k2| + 1 / size), size the diagonal of the control points' box.
 //
-// Where F_u x F_v vanishes (|F_u x F_v| <= 1e-12 max(n m, 1) size^2, as surface_normal.h judges
-// it) the formulas divide by zero. At a pole, a boundary edge whose control points coincide (the
+// Where F_u x F_v vanishes (detail::first_normal_vanishes: below 1e-12 max(n m, 1) size^2 or
+// its rounding far from the origin, as surface_normal.h judges it) the formulas divide by zero. At a pole, a boundary edge whose control points coincide (the
 // teapot's lid and bottom, a sphere's poles), the curvature is computed from the curves that
 // leave the pole across the edge: each curve c(t) = F(s, t) (or F(t, s)) through the pole is
 // regular there (c' = F_v != 0), and by Meusnier's theorem its normal curvature

@@ -82,6 +82,30 @@ TEST(SurfaceCurvature, NurbsSphereIncludingItsPoles) {
   EXPECT_EQ(poles, 2 * 9);  // both rows of poles
 }
 
+// The same sphere 10^6 away (not at integer coordinates): its poles' F_u is rounding of the
+// coordinates' size, not 0, and must still count as vanishing (surface_normal.h's rule), so the
+// poles take the pole fit; every curvature is the unmoved sphere's to that distance's rounding.
+TEST(SurfaceCurvature, NurbsSphereFarFromTheOriginKeepsItsPoles) {
+  const double r = 0.75;
+  const NurbsSurface near = nurbs_sphere(Vec3(0.0, 0.5, -1.0), r);
+  const NurbsSurface far = nurbs_sphere(Vec3(1e6 + 0.1, 7e5 + 0.3, -3e5 + 0.7), r);
+  int poles = 0;
+  for (const double u : spread(near.knots_u().a(), near.knots_u().b(), 9)) {
+    for (const double v : spread(near.knots_v().a(), near.knots_v().b(), 9)) {
+      const SurfaceCurvature expected = curvature(near, u, v);
+      const SurfaceCurvature k = curvature(far, u, v);
+      SCOPED_TRACE(::testing::Message() << "(" << u << ", " << v << ")");
+      ASSERT_TRUE(k.defined);
+      EXPECT_EQ(k.at_pole, expected.at_pole);
+      EXPECT_NEAR(k.k1 * r, expected.k1 * r, 1e-6);
+      EXPECT_NEAR(k.k2 * r, expected.k2 * r, 1e-6);
+      EXPECT_LT((k.normal - expected.normal).norm(), 1e-6);
+      poles += k.at_pole ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(poles, 2 * 9);
+}
+
 // The cylinder about z of radius r, outward normal: k1 = 0 along the axis, k2 = -1/r around it,
 // K = 0, H = -1/(2r).
 TEST(SurfaceCurvature, CylinderBendsAroundItsAxisOnly) {
