@@ -12,6 +12,7 @@
 #include "queries/ray_piece_nets.h"
 #include "queries/wide_bvh.h"
 #include "surfaces/rational_bezier_patch.h"
+#include "surfaces/surface_normal.h"
 
 namespace patchwork {
 namespace {
@@ -132,10 +133,15 @@ void add_hit(const PatchSet& set, const Ray& ray, std::uint32_t p, double u, dou
   if (!(hit.t >= ray.t_min && hit.t <= ray.t_max)) return;
   // Within about 1e-8 (in the parameters) of a collapsed edge F_u x F_v is rounding, not a
   // direction (at the edge itself F_u or F_v is a sum of rounding errors): the limit normal
-  // there. The scale is the longer tangent's, squared, which a collapsed edge leaves standing.
+  // there. The scale is the longer tangent's, squared, which a collapsed edge leaves standing;
+  // far from the origin the sums' rounding (surface_normal.h's rule) can exceed that.
   const Vec3 cross = d.du.cross(d.dv);
   const double scale = std::max(d.du.squaredNorm(), d.dv.squaredNorm());
-  hit.normal = cross.norm() > 1e-8 * scale ? cross.normalized() : detail::patch_unit_normal(set, p, hit.u, hit.v);
+  const RationalBezierPatch* rational = set.rational(p);
+  const detail::DegeneracyThresholds limits =
+      rational ? detail::degeneracy_thresholds(*rational) : detail::degeneracy_thresholds(set.control_nets()[p]);
+  const bool regular = cross.norm() > 1e-8 * scale && !detail::first_normal_vanishes(d.du, d.dv, limits);
+  hit.normal = regular ? cross.normalized() : detail::patch_unit_normal(set, p, hit.u, hit.v);
   hit.grazing = grazing || std::abs(hit.normal.dot(ray.direction.normalized())) < 1e-6;
   hits.push_back({hit, off_ray(ray, hit.point)});
 }

@@ -229,6 +229,21 @@ TEST(RayCast, SmallSceneFarFromTheOriginSettles) {
   }
 }
 
+// A ray down the axis onto a sphere's pole far from the origin: F_u there is rounding of the
+// coordinates' size, which must not be taken for a tangent (the normal would be that noise's);
+// the hit's normal is the pole's, +z, as near the origin.
+TEST(RayCast, PoleNormalFarFromTheOrigin) {
+  for (const Vec3& centre : {Vec3(0.25, -0.5, 1.0), Vec3(1e6 + 0.1, 7e5 + 0.3, -3e5 + 0.7),
+                             Vec3(1e8 + 0.1, 7e7 + 0.3, -3e7 + 0.7), Vec3(1e9 + 0.1, 7e8 + 0.3, -3e8 + 0.7)}) {
+    const PatchSet set = set_from(nurbs_sphere(centre, 1.5));
+    const RayHits result = ray_cast(set, centre + Vec3(0, 0, 5), Vec3(0, 0, -1));
+    ASSERT_FALSE(result.hits.empty()) << centre.transpose();
+    const RayHit& top = result.hits.front();
+    EXPECT_NEAR(top.point.z() - centre.z(), 1.5, 1e-12 * centre.norm() + 1e-12) << centre.transpose();
+    EXPECT_LT((top.normal - Vec3(0, 0, 1)).norm(), centre.norm() > 1e8 ? 1e-5 : 1e-6) << centre.transpose();
+  }
+}
+
 TEST(RayCast, LimitsAndBadInput) {
   const PatchBvh bvh(sphere());
   const Vec3 o(0.25, -0.5, -5.0), d(0, 0, 1);
