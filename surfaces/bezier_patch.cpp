@@ -1,6 +1,7 @@
 #include "surfaces/bezier_patch.h"
 
 #include <algorithm>
+#include <array>
 
 #include "core/errors.h"
 #include "curves/degree.h"
@@ -153,13 +154,29 @@ PartialDerivatives<Dim> partial_derivatives(const BezierPatch<Dim>& patch, doubl
   const int n = patch.degree_u();
   const int m = patch.degree_v();
   const int stride = n + 1;
-  std::vector<Point<Dim>> in_u = patch.control_points();
-  std::vector<Point<Dim>> in_uv(in_u.size());
-  std::vector<Point<Dim>> line(static_cast<std::size_t>(std::max(n, m)) + 1);
-  std::vector<Point<Dim>> across(static_cast<std::size_t>(m) + 1);
+  // Up to bicubic the nets live on the stack (limit normals, G1 tests and tangents call this per
+  // sample, where four allocations cost more than the arithmetic); the arithmetic is the same.
+  constexpr std::size_t small = 16;
+  const std::size_t count = patch.control_points().size();
+  const std::size_t width = static_cast<std::size_t>(std::max(n, m)) + 1;
+  const bool fits = count <= small && width <= 4;
+  std::array<Point<Dim>, small> in_u_small, in_uv_small;
+  std::array<Point<Dim>, 4> line_small, across_small;
+  std::vector<Point<Dim>> in_u_heap, in_uv_heap, line_heap, across_heap;
+  if (!fits) {
+    in_u_heap.resize(count);
+    in_uv_heap.resize(count);
+    line_heap.resize(width);
+    across_heap.resize(static_cast<std::size_t>(m) + 1);
+  }
+  Point<Dim>* const in_u = fits ? in_u_small.data() : in_u_heap.data();
+  Point<Dim>* const in_uv = fits ? in_uv_small.data() : in_uv_heap.data();
+  Point<Dim>* const line = fits ? line_small.data() : line_heap.data();
+  Point<Dim>* const across = fits ? across_small.data() : across_heap.data();
+  std::copy(patch.control_points().begin(), patch.control_points().end(), in_u);
   for (int a = 0; a <= order; ++a) {
     const int du = n - a;
-    if (du >= 0) std::copy(in_u.begin(), in_u.end(), in_uv.begin());
+    if (du >= 0) std::copy(in_u, in_u + count, in_uv);
     for (int b = 0; a + b <= order; ++b) {
       const int dv = m - b;
       if (du < 0 || dv < 0) {
@@ -167,10 +184,10 @@ PartialDerivatives<Dim> partial_derivatives(const BezierPatch<Dim>& patch, doubl
         continue;
       }
       for (int j = 0; j <= dv; ++j) {
-        std::copy_n(in_uv.begin() + stride * j, du + 1, line.begin());
-        across[static_cast<std::size_t>(j)] = de_casteljau<Dim>(line.data(), du, u);
+        std::copy_n(in_uv + stride * j, du + 1, line);
+        across[j] = de_casteljau<Dim>(line, du, u);
       }
-      table.at(a, b) = de_casteljau<Dim>(across.data(), dv, v);
+      table.at(a, b) = de_casteljau<Dim>(across, dv, v);
       if (a + b < order) {
         for (int i = 0; i <= du; ++i) {
           for (int j = 0; j < dv; ++j) in_uv[i + stride * j] = dv * (in_uv[i + stride * (j + 1)] - in_uv[i + stride * j]);
