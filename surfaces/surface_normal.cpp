@@ -1,6 +1,7 @@
 #include "surfaces/surface_normal.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -130,14 +131,71 @@ Vec3 staged_limit_normal(const Patch& patch, double u, double v, const detail::D
   return detail::limit_unit_normal(partial_derivatives(patch, u, v, full), u, v, thresholds, n, m);
 }
 
+// de Casteljau of points[0..N] at s in place, partial_derivatives' arithmetic (r p_i + s p_i+1).
+template <int N>
+Vec3 de_casteljau_fixed(std::array<Vec3, 4>& points, double s) {
+  const double r = 1.0 - s;
+  for (int k = 1; k <= N; ++k) {
+    for (int i = 0; i + k <= N; ++i) points[i] = r * points[i] + s * points[i + 1];
+  }
+  return points[0];
+}
+
+// F_u and F_v at (u, v) for degrees (N, M), both 1 to 3, by partial_derivatives' own arithmetic
+// (the net differenced, its rows by de Casteljau, then across), bit for bit its at(1, 0) and
+// at(0, 1), without F and without its table: the G1 test of every shared edge calls unit_normal
+// at 13 points a side.
+template <int N, int M>
+void first_derivatives_fixed(const std::vector<Vec3>& P, double u, double v, Vec3& fu, Vec3& fv) {
+  const auto at = [&](int i, int j) -> const Vec3& { return P[static_cast<std::size_t>(i + (N + 1) * j)]; };
+  std::array<Vec3, 4> across;
+  std::array<Vec3, 4> line;
+  // F_v: rows of M (P_i,j+1 - P_ij), j < M, each at u (degree N), then across at v (degree M - 1).
+  for (int j = 0; j < M; ++j) {
+    for (int i = 0; i <= N; ++i) line[i] = static_cast<double>(M) * (at(i, j + 1) - at(i, j));
+    across[j] = de_casteljau_fixed<N>(line, u);
+  }
+  fv = de_casteljau_fixed<M - 1>(across, v);
+  // F_u: rows of N (P_i+1,j - P_ij), i < N, each at u (degree N - 1), then across (degree M).
+  for (int j = 0; j <= M; ++j) {
+    for (int i = 0; i < N; ++i) line[i] = static_cast<double>(N) * (at(i + 1, j) - at(i, j));
+    across[j] = de_casteljau_fixed<N - 1>(line, u);
+  }
+  fu = de_casteljau_fixed<M>(across, v);
+}
+
+template <int N>
+bool first_derivatives_fixed_u(int m, const std::vector<Vec3>& P, double u, double v, Vec3& fu, Vec3& fv) {
+  if (m == 1) first_derivatives_fixed<N, 1>(P, u, v, fu, fv);
+  if (m == 2) first_derivatives_fixed<N, 2>(P, u, v, fu, fv);
+  if (m == 3) first_derivatives_fixed<N, 3>(P, u, v, fu, fv);
+  return m >= 1 && m <= 3;
+}
+
+// F_u and F_v of a polynomial patch: partial_derivatives(patch, u, v, 1)'s, unrolled for the
+// usual degrees.
+void first_derivatives(const BezierPatch3& patch, double u, double v, Vec3& fu, Vec3& fv) {
+  const int n = patch.degree_u();
+  const int m = patch.degree_v();
+  const std::vector<Vec3>& P = patch.control_points();
+  if ((n == 1 && first_derivatives_fixed_u<1>(m, P, u, v, fu, fv)) ||
+      (n == 2 && first_derivatives_fixed_u<2>(m, P, u, v, fu, fv)) ||
+      (n == 3 && first_derivatives_fixed_u<3>(m, P, u, v, fu, fv))) {
+    return;
+  }
+  const PartialDerivatives<3> F = partial_derivatives(patch, u, v, 1);
+  fu = F.at(1, 0);
+  fv = F.at(0, 1);
+}
+
 }  // namespace
 
 Vec3 unit_normal(const BezierPatch3& patch, double u, double v) {
   const detail::DegeneracyThresholds thresholds = detail::degeneracy_thresholds(patch);
-  const PartialDerivatives<3> F = partial_derivatives(patch, u, v, 1);
-  if (!detail::first_normal_vanishes(F.at(1, 0), F.at(0, 1), thresholds)) {
-    return F.at(1, 0).cross(F.at(0, 1)).normalized();
-  }
+  if (!std::isfinite(u) || !std::isfinite(v)) (void)partial_derivatives(patch, u, v, 1);  // throws InvalidInput
+  Vec3 fu, fv;
+  first_derivatives(patch, u, v, fu, fv);
+  if (!detail::first_normal_vanishes(fu, fv, thresholds)) return fu.cross(fv).normalized();
   return staged_limit_normal(patch, u, v, thresholds);
 }
 

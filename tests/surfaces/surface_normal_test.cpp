@@ -98,6 +98,19 @@ RC_GTEST_PROP(SurfaceNormal, OrthogonalToBothTangents, ()) {
   RC_ASSERT(unit.dot(n) > 0.0);
 }
 
+// unit_normal's unrolled first derivatives (degrees 1-3) are partial_derivatives' bit for bit:
+// at regular points it is F_u x F_v of partial_derivatives(patch, u, v, 1), normalised, on and off
+// the square, every degree pair (and degree 4, the general path).
+RC_GTEST_PROP(SurfaceNormal, RegularNormalIsThePartialDerivativesOneBitForBit, ()) {
+  const BezierPatch3 patch = *testing::random_patch(1, 4);
+  const double u = *coordinate(-0.25, 1.25);
+  const double v = *coordinate(-0.25, 1.25);
+  const PartialDerivatives<3> F = partial_derivatives(patch, u, v, 1);
+  const Vec3 n = F.at(1, 0).cross(F.at(0, 1));
+  RC_PRE(n.norm() > 1e-6 * F.at(1, 0).norm() * F.at(0, 1).norm());
+  RC_ASSERT(unit_normal(patch, u, v) == n.normalized());
+}
+
 RC_GTEST_PROP(SurfaceNormal, RotatesWithTheSurface, ()) {
   const BezierPatch3 patch = *testing::random_patch(1, 3);
   const Eigen::Isometry3d motion = *testing::random_rigid_motion();
