@@ -45,11 +45,24 @@ def test_split_halves_are_the_curve_and_join_smoothly(points: np.ndarray, t: flo
     assert np.allclose(left.evaluate(s), curve.evaluate(s), atol=1e-12 * (1 + np.abs(points).max()))
     join = pw.continuity(left, right, max_order=len(points) - 1, relative_tolerance=1e-8)
     assert join.ck == len(points) - 1
-    # A curve that is not one point (to the check's relative tolerance) has a (limit) tangent at
-    # t, the same on both sides.
+    # A curve that is one point has no tangent; one that is regular at t (not one point to the
+    # check's relative tolerance) has its tangent there on both sides. Where c'(t) = 0 the first
+    # derivative that does not vanish decides: of even order the curve turns back (a cusp, not
+    # G1), as in test_folded_curve_split_at_its_turn_is_not_g1.
     spread = np.ptp(points, axis=0).max()
-    if spread == 0 or spread > 1e-6:
-        assert join.g1 == (spread > 0)
+    if spread == 0:
+        assert not join.g1
+    elif spread > 1e-6 and np.linalg.norm(curve.derivative(np.array([t]))) > 1e-6 * spread:
+        assert join.g1
+
+
+def test_folded_curve_split_at_its_turn_is_not_g1() -> None:
+    # The quadratic (1, 0, 1) in x runs back along itself after t = 1/2, where c' = 0 and
+    # c'' != 0: the halves meet with opposite tangents (hypothesis found it).
+    curve = pw.BezierCurve(np.array([[1.0, 1.0, 1.0], [0.0, 1.0, 1.0], [1.0, 1.0, 1.0]]))
+    left, right = curve.split(0.5)
+    join = pw.continuity(left, right, max_order=2, relative_tolerance=1e-8)
+    assert join.ck == 2 and not join.g1
 
 
 def test_parameter_arrays_of_any_shape_and_dtype() -> None:
