@@ -142,6 +142,24 @@ PartialDerivatives<3> partial_derivatives(const NurbsSurface& surface, double u,
   return detail::projected_partial_derivatives(homogeneous_partials(surface, u, v, order));
 }
 
+namespace detail {
+
+DegeneracyThresholds degeneracy_thresholds(const NurbsSurface& surface, int i0, int i1, int j0, int j1) {
+  Eigen::AlignedBox3d box(surface.control_point(i0, j0));
+  double w_min = surface.weight(i0, j0);
+  double w_max = w_min;
+  for (int j = j0; j <= j1; ++j) {
+    for (int i = i0; i <= i1; ++i) {
+      box.extend(surface.control_point(i, j));
+      w_min = std::min(w_min, surface.weight(i, j));
+      w_max = std::max(w_max, surface.weight(i, j));
+    }
+  }
+  return degeneracy_thresholds(surface.degree_u(), surface.degree_v(), box, true, w_max / w_min);
+}
+
+}  // namespace detail
+
 Vec3 unit_normal(const NurbsSurface& surface, double u, double v) {
   check_domain(surface, u, v);
   const int p = surface.degree_u(), q = surface.degree_v();
@@ -153,17 +171,7 @@ Vec3 unit_normal(const NurbsSurface& surface, double u, double v) {
   const double du = U[su + 1] - U[su], dv = V[sv + 1] - V[sv];
   // Vanishing is judged against the span's control points and weights, the net of the piece's
   // derivatives.
-  Eigen::AlignedBox3d box(surface.control_point(su - p, sv - q));
-  double w_min = surface.weight(su - p, sv - q);
-  double w_max = w_min;
-  for (int j = sv - q; j <= sv; ++j) {
-    for (int i = su - p; i <= su; ++i) {
-      box.extend(surface.control_point(i, j));
-      w_min = std::min(w_min, surface.weight(i, j));
-      w_max = std::max(w_max, surface.weight(i, j));
-    }
-  }
-  const detail::DegeneracyThresholds thresholds = detail::degeneracy_thresholds(p, q, box, true, w_max / w_min);
+  const detail::DegeneracyThresholds thresholds = detail::degeneracy_thresholds(surface, su - p, su, sv - q, sv);
   const auto in_piece = [&](int order) {
     PartialDerivatives<3> F = partial_derivatives(surface, u, v, order);
     for (int a = 0; a <= order; ++a) {

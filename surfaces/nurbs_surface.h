@@ -114,4 +114,11 @@ NurbsBezierPatches bezier_patches(const NurbsSurface& surface);
 /// left out. \throws InvalidInput unless a_u <= u0 < u1 <= b_u and a_v <= v0 < v1 <= b_v.
 NurbsBezierPatches bezier_patches(const NurbsSurface& surface, double u0, double u1, double v0, double v1);
 
+namespace detail {
+struct DegeneracyThresholds;
+/// surface_normal.h's degeneracy_thresholds of the control points P_ij and weights with
+/// i0 <= i <= i1, j0 <= j <= j1 (a span's, or the whole net's).
+DegeneracyThresholds degeneracy_thresholds(const NurbsSurface& surface, int i0, int i1, int j0, int j1);
+}  // namespace detail
+
 }  // namespace patchwork

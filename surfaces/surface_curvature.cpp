@@ -203,19 +203,9 @@ SurfaceCurvature curvature(const NurbsSurface& surface, double u, double v) {
   };
   const KnotVector& U = surface.knots_u();
   const KnotVector& V = surface.knots_v();
-  // The whole net's box and weights (a span's piece lies in its hull).
-  Eigen::AlignedBox3d box(surface.control_point(0, 0));
-  double w_min = surface.weight(0, 0);
-  double w_max = w_min;
-  for (int j = 0; j < surface.count_v(); ++j) {
-    for (int i = 0; i < surface.count_u(); ++i) {
-      box.extend(surface.control_point(i, j));
-      w_min = std::min(w_min, surface.weight(i, j));
-      w_max = std::max(w_max, surface.weight(i, j));
-    }
-  }
+  // The whole net's points and weights (a span's piece lies in its hull).
   const detail::DegeneracyThresholds t =
-      detail::degeneracy_thresholds(surface.degree_u(), surface.degree_v(), box, true, w_max / w_min);
+      detail::degeneracy_thresholds(surface, 0, surface.count_u() - 1, 0, surface.count_v() - 1);
   std::optional<Pole> pole;
   if (V.is_clamped() && ((v == V.a() && collapsed(row_v(0), size, t)) ||
                          (v == V.b() && collapsed(row_v(surface.count_v() - 1), size, t)))) {

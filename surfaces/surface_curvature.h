@@ -21,10 +21,11 @@
 // k1 - k2 <= 1e-8 (|k1| + |k2| + 1 / size), size the diagonal of the control points' box.
 //
 // Where F_u x F_v vanishes (detail::first_normal_vanishes: below 1e-12 max(n m, 1) size^2 or
-// its rounding far from the origin, as surface_normal.h judges it) the formulas divide by zero. At a pole, a boundary edge whose control points coincide (the
-// teapot's lid and bottom, a sphere's poles), the curvature is computed from the curves that
-// leave the pole across the edge: each curve c(t) = F(s, t) (or F(t, s)) through the pole is
-// regular there (c' = F_v != 0), and by Meusnier's theorem its normal curvature
+// its rounding far from the origin, as surface_normal.h judges it) the formulas divide by zero.
+// At a pole, a boundary edge whose control points coincide (the teapot's lid and bottom, a
+// sphere's poles), the curvature is computed from the curves that leave the pole across the edge:
+// each curve c(t) = F(s, t) (or F(t, s)) through the pole is regular there (c' = F_v != 0), and
+// by Meusnier's theorem its normal curvature
 //
 //   k_n(s) = c''.n / |c'|^2 = II(T, T),   T = c' / |c'|, n the limit normal of surface_normal.h,
 //
