@@ -169,6 +169,15 @@ std::optional<TJunction> tile_edge(std::size_t a, const std::vector<EdgeRef>& ed
 }
 
 
+// The diagonal of the box of every control point of `nets` (not empty).
+double control_box_diagonal(const std::vector<BezierPatch3>& nets) {
+  Eigen::AlignedBox3d box(nets.front().control_points().front());
+  for (const auto& patch : nets) {
+    for (const auto& p : patch.control_points()) box.extend(p);
+  }
+  return box.diagonal().norm();
+}
+
 }  // namespace
 
 const char* edge_name(PatchEdge edge) {
@@ -257,11 +266,7 @@ PatchSet::PatchSet(Kinds kinds, std::span<const KnownJoin> joins, double relativ
   rational_count_ = static_cast<std::size_t>(
       std::count_if(rational_.begin(), rational_.end(), [](const auto& r) { return r.has_value(); }));
   if (rational_count_ == 0) rational_.clear();
-  Eigen::AlignedBox3d box(nets_.front().control_points().front());
-  for (const auto& patch : nets_) {
-    for (const auto& p : patch.control_points()) box.extend(p);
-  }
-  size_ = box.diagonal().norm();
+  size_ = control_box_diagonal(nets_);
   tolerance_ = relative_tolerance * size_;
 
   // Every edge: collapsed (a rational edge too: its points are convex combinations of the
@@ -569,6 +574,90 @@ std::optional<EdgeRef> PatchSet::neighbour(EdgeRef edge) const {
     if (s.second == edge) return s.first;
   }
   return std::nullopt;
+}
+
+PatchSet PatchSet::subset(std::span<const std::uint32_t> patches) const {
+  if (patches.empty()) throw InvalidInput("PatchSet::subset: no patches");
+  constexpr std::uint32_t outside = 0xffffffffu;
+  std::vector<std::uint32_t> index(nets_.size(), outside);  // this set's patch -> the subset's
+  for (std::size_t k = 0; k < patches.size(); ++k) {
+    if (patches[k] >= nets_.size()) {
+      throw InvalidInput(detail::message("PatchSet::subset: patch ", patches[k], " of ", nets_.size(), " does not exist"));
+    }
+    if (k > 0 && patches[k] <= patches[k - 1]) {
+      throw InvalidInput(detail::message("PatchSet::subset: patch ", patches[k], " after ", patches[k - 1],
+                                         ": the patches are not increasing"));
+    }
+    index[patches[k]] = static_cast<std::uint32_t>(k);
+  }
+  const auto inside = [&](const EdgeRef& e) { return index[e.patch] != outside; };
+  const auto renumbered = [&](EdgeRef e) { return EdgeRef{index[e.patch], e.edge}; };
+  const auto cut = [&](std::uint32_t in, std::uint32_t out) {
+    return InvalidInput(detail::message("PatchSet::subset: patch ", in, " is joined to patch ", out,
+                                        ", which is left out (the subset cuts a shell)"));
+  };
+  PatchSet sub;
+  sub.nets_.reserve(patches.size());
+  for (const std::uint32_t p : patches) sub.nets_.push_back(nets_[p]);
+  if (rational_count_ > 0) {
+    sub.rational_.reserve(patches.size());
+    for (const std::uint32_t p : patches) sub.rational_.push_back(rational_[p]);
+    sub.rational_count_ = static_cast<std::size_t>(
+        std::count_if(sub.rational_.begin(), sub.rational_.end(), [](const auto& r) { return r.has_value(); }));
+    if (sub.rational_count_ == 0) sub.rational_.clear();
+  }
+  sub.size_ = control_box_diagonal(sub.nets_);
+  sub.tolerance_ = tolerance_;
+  for (const SharedEdge& s : shared_) {
+    if (inside(s.first) != inside(s.second)) {
+      throw inside(s.first) ? cut(s.first.patch, s.second.patch) : cut(s.second.patch, s.first.patch);
+    }
+    if (!inside(s.first)) continue;
+    SharedEdge edge = s;
+    edge.first = renumbered(s.first);
+    edge.second = renumbered(s.second);
+    sub.shared_.push_back(edge);
+  }
+  for (const TJunction& t : t_junctions_) {
+    for (const EdgeRef& part : t.parts) {
+      if (inside(t.edge) != inside(part)) throw inside(t.edge) ? cut(t.edge.patch, part.patch) : cut(part.patch, t.edge.patch);
+    }
+    if (!inside(t.edge)) continue;
+    TJunction junction = t;
+    junction.edge = renumbered(t.edge);
+    for (EdgeRef& part : junction.parts) part = renumbered(part);
+    sub.t_junctions_.push_back(std::move(junction));
+  }
+  for (const EdgeRef& e : collapsed_) {
+    if (inside(e)) sub.collapsed_.push_back(renumbered(e));
+  }
+  for (const EdgeRef& e : open_) {
+    if (inside(e)) sub.open_.push_back(renumbered(e));
+  }
+  // A loop's corners are joined through shared and collapsed edges and T-junctions (see the
+  // constructor): it lies in one shell, wholly inside or outside.
+  for (const BoundaryLoop& loop : loops_) {
+    if (!inside(loop.edges.front())) continue;
+    BoundaryLoop kept{{}, loop.closed};
+    kept.edges.reserve(loop.edges.size());
+    for (const EdgeRef& e : loop.edges) kept.edges.push_back(renumbered(e));
+    sub.loops_.push_back(std::move(kept));
+  }
+  // A group of a touching point is edge-connected, so in one shell: kept or left out whole.
+  for (const TouchingPoint& point : touching_) {
+    TouchingPoint kept{point.point, {}};
+    for (const std::vector<std::uint32_t>& group : point.groups) {
+      if (index[group.front()] == outside) continue;
+      std::vector<std::uint32_t> members;
+      members.reserve(group.size());
+      for (const std::uint32_t p : group) members.push_back(index[p]);
+      kept.groups.push_back(std::move(members));
+    }
+    if (kept.groups.size() < 2) continue;
+    std::sort(kept.groups.begin(), kept.groups.end());
+    sub.touching_.push_back(std::move(kept));
+  }
+  return sub;
 }
 
 std::vector<Shell> shells(const PatchSet& set) {

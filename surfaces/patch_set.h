@@ -158,7 +158,18 @@ class PatchSet {
   /// The edge shared with `edge`, if any.
   std::optional<EdgeRef> neighbour(EdgeRef edge) const;
 
+  /// The set of `patches` (increasing indices into this set, whole shells: every shared edge and
+  /// T-junction of one of them joins only patches among them), with the adjacency this set found
+  /// among them, not searched again: patch k of the subset is patches[k], every edge, loop and
+  /// touching point renumbered so (a touching point keeps its groups in the subset, and is left
+  /// out with fewer than two). The absolute tolerance stays this set's; size() is the diagonal
+  /// of the box of the subset's control points. Linear in the subset's adjacency.
+  /// \throws InvalidInput if `patches` is empty, not increasing, names a patch that does not
+  ///         exist, or cuts a shell.
+  PatchSet subset(std::span<const std::uint32_t> patches) const;
+
  private:
+  PatchSet() = default;
   // The nets, and per patch the rational patch where it is one.
   using Kinds = std::pair<std::vector<BezierPatch3>, std::vector<std::optional<RationalBezierPatch>>>;
   static Kinds split_kinds(std::span<const AnyBezierPatch> patches);
@@ -168,8 +179,8 @@ class PatchSet {
   // Per patch, the rational patch where it is one (empty: none is).
   std::vector<std::optional<RationalBezierPatch>> rational_;
   std::size_t rational_count_ = 0;
-  double size_;
-  double tolerance_;
+  double size_ = 0.0;
+  double tolerance_ = 0.0;
   std::vector<SharedEdge> shared_;
   std::vector<TJunction> t_junctions_;
   std::vector<EdgeRef> collapsed_;

@@ -17,6 +17,7 @@
 #include "core/errors.h"
 #include "io/gltf.h"
 #include "io/mesh_file.h"
+#include "surfaces/batched_tessellation.h"
 #include "surfaces/patch_bounding_box.h"
 #include "surfaces/tessellator.h"
 #include "tools/default_tolerance.h"
@@ -179,14 +180,16 @@ void run_tessellate(std::ostream& out, std::ostream& progress, const TessellateA
   const PatchSet set = read_patch_set(arguments.input);
   report_progress(detail::message("read ", arguments.input, ": ", set.count(), " patches; tessellating"));
   const auto tessellation_start = std::chrono::steady_clock::now();
-  Tessellation result = tessellate(set, options);
+  // A batch of whole shells at a time (surfaces/batched_tessellation.h): a scene of many objects
+  // holds one batch's working memory, not the whole scene's.
+  Tessellation result = tessellate_in_batches(set, options);
   // Coarser levels of detail, each at its factor times the tolerance.
   std::vector<Tessellation> coarser;
   for (const double factor : arguments.lod_factors) {
     TessellationOptions level = options;
     if (level.tolerance) *level.tolerance *= factor;
     if (level.relative_tolerance) *level.relative_tolerance *= factor;
-    coarser.push_back(tessellate(set, level));
+    coarser.push_back(tessellate_in_batches(set, level));
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tessellation_start).count();
   // The meter's share of that, every level's (the rest is tessellating).

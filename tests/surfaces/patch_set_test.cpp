@@ -5,10 +5,13 @@
 
 #include <nlohmann/json.hpp>
 #include <algorithm>
+#include <numeric>
 #include <random>
 #include <sstream>
 
 #include "core/errors.h"
+#include "io/bpt.h"
+#include "surfaces/patch_transform.h"
 #include "surfaces/tessellator.h"
 #include "tests/surfaces/patch_fixtures.h"
 #include "tests/surfaces/rational_shapes.h"
@@ -414,6 +417,137 @@ TEST(RationalPatchSet, RationalEdgesTakeNoPartInTJunctions) {
         << "patch " << p << ": its equator edge stays open";
   }
   EXPECT_EQ(set.rational_count(), 3u);
+}
+
+
+// --- subsets of whole shells -------------------------------------------------------------------
+
+// The adjacency of `a` and `b` is the same, element for element (touching points' positions
+// within `tolerance`: each is one of the corners there).
+void expect_same_adjacency(const PatchSet& a, const PatchSet& b, double tolerance) {
+  ASSERT_EQ(a.count(), b.count());
+  ASSERT_EQ(a.shared_edges().size(), b.shared_edges().size());
+  for (std::size_t k = 0; k < a.shared_edges().size(); ++k) {
+    const SharedEdge& s = a.shared_edges()[k];
+    const SharedEdge& t = b.shared_edges()[k];
+    EXPECT_EQ(s.first, t.first) << k;
+    EXPECT_EQ(s.second, t.second) << k;
+    EXPECT_EQ(s.reversed, t.reversed) << k;
+    EXPECT_EQ(s.consistently_oriented, t.consistently_oriented) << k;
+    EXPECT_EQ(s.continuity.ck, t.continuity.ck) << k;
+    EXPECT_EQ(s.continuity.g1, t.continuity.g1) << k;
+    EXPECT_EQ(s.continuity.gap, t.continuity.gap) << k;
+  }
+  EXPECT_EQ(a.collapsed_edges(), b.collapsed_edges());
+  EXPECT_EQ(a.open_edges(), b.open_edges());
+  ASSERT_EQ(a.t_junctions().size(), b.t_junctions().size());
+  for (std::size_t k = 0; k < a.t_junctions().size(); ++k) {
+    EXPECT_EQ(a.t_junctions()[k].edge, b.t_junctions()[k].edge);
+    EXPECT_EQ(a.t_junctions()[k].parts, b.t_junctions()[k].parts);
+    EXPECT_EQ(a.t_junctions()[k].breaks, b.t_junctions()[k].breaks);
+    EXPECT_EQ(a.t_junctions()[k].reversed, b.t_junctions()[k].reversed);
+  }
+  ASSERT_EQ(a.boundary_loops().size(), b.boundary_loops().size());
+  for (std::size_t k = 0; k < a.boundary_loops().size(); ++k) {
+    EXPECT_EQ(a.boundary_loops()[k].edges, b.boundary_loops()[k].edges) << k;
+    EXPECT_EQ(a.boundary_loops()[k].closed, b.boundary_loops()[k].closed) << k;
+  }
+  ASSERT_EQ(a.touching_points().size(), b.touching_points().size());
+  for (std::size_t k = 0; k < a.touching_points().size(); ++k) {
+    EXPECT_EQ(a.touching_points()[k].groups, b.touching_points()[k].groups) << k;
+    EXPECT_LE((a.touching_points()[k].point - b.touching_points()[k].point).norm(), tolerance) << k;
+  }
+}
+
+// The set analysed afresh from the subset's patches with the subset's absolute tolerance: what
+// the subset's carried-over adjacency must be.
+PatchSet analysed_afresh(const PatchSet& subset) {
+  std::vector<AnyBezierPatch> patches;
+  for (std::uint32_t p = 0; p < subset.count(); ++p) patches.push_back(subset.patch(p));
+  return PatchSet(patches, subset.tolerance() / subset.size());
+}
+
+// Shells of a scene (the teapot, a copy of it moved and turned, a T-junction, a rational
+// sphere), and subsets of whole shells: each has the adjacency a fresh analysis of its patches
+// finds, its own control box and the set's tolerance.
+TEST(PatchSet, SubsetOfWholeShellsKeepsTheAdjacency) {
+  std::vector<AnyBezierPatch> scene;
+  const std::vector<BezierPatch3> teapot = read_bpt(PATCHWORK_DATA_DIR "/teapot.bpt");
+  const Eigen::Affine3d moved = Eigen::Translation3d(10, -3, 2) * Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized());
+  for (const BezierPatch3& patch : teapot) scene.emplace_back(patch);
+  for (const BezierPatch3& patch : testing::t_junction_pieces(testing::wavy_bicubic(), {0.3})) {
+    scene.emplace_back(transform(patch, Eigen::Affine3d(Eigen::Translation3d(-8, 0, 0))));
+  }
+  for (const RationalBezierPatch& octant : testing::unit_sphere_octants()) {
+    scene.emplace_back(transform(octant, Eigen::Affine3d(Eigen::Translation3d(0, 9, 0))));
+  }
+  for (const BezierPatch3& patch : teapot) scene.emplace_back(transform(patch, moved));
+  const PatchSet set(scene);
+  const std::vector<Shell> parts = shells(set);
+  ASSERT_GE(parts.size(), 6u);
+  ASSERT_EQ(set.t_junctions().size(), 1u);
+  ASSERT_EQ(set.touching_points().size(), 2u);  // each teapot's handle on its body
+  // Every shell alone, every other shell, and all but the first.
+  std::vector<std::vector<std::uint32_t>> subsets;
+  for (const Shell& shell : parts) subsets.push_back(shell.patches);
+  for (std::size_t start : {0, 1}) {
+    std::vector<std::uint32_t> every_other;
+    for (std::size_t k = start; k < parts.size(); k += 2) {
+      every_other.insert(every_other.end(), parts[k].patches.begin(), parts[k].patches.end());
+    }
+    std::sort(every_other.begin(), every_other.end());
+    subsets.push_back(every_other);
+  }
+  std::vector<std::uint32_t> all_but_first;
+  for (std::size_t k = 1; k < parts.size(); ++k) {
+    all_but_first.insert(all_but_first.end(), parts[k].patches.begin(), parts[k].patches.end());
+  }
+  std::sort(all_but_first.begin(), all_but_first.end());
+  subsets.push_back(all_but_first);
+  std::size_t with_touching = 0, with_junction = 0, rational = 0;
+  for (const std::vector<std::uint32_t>& patches : subsets) {
+    SCOPED_TRACE(detail::message("subset of ", patches.size(), " patches from ", patches.front()));
+    const PatchSet subset = set.subset(patches);
+    ASSERT_EQ(subset.count(), patches.size());
+    for (std::size_t k = 0; k < patches.size(); ++k) {
+      EXPECT_EQ(subset.control_nets()[k].control_points(), set.control_nets()[patches[k]].control_points());
+      EXPECT_EQ(subset.is_rational(static_cast<std::uint32_t>(k)), set.is_rational(patches[k]));
+    }
+    EXPECT_EQ(subset.tolerance(), set.tolerance());
+    const PatchSet fresh = analysed_afresh(subset);
+    EXPECT_EQ(subset.size(), fresh.size());
+    EXPECT_EQ(subset.rational_count(), fresh.rational_count());
+    expect_same_adjacency(subset, fresh, subset.tolerance());
+    with_touching += !subset.touching_points().empty();
+    with_junction += !subset.t_junctions().empty();
+    rational += subset.rational_count() > 0;
+  }
+  // The cases the scene is for did occur.
+  EXPECT_GT(with_touching, 0u);
+  EXPECT_GT(with_junction, 0u);
+  EXPECT_GT(rational, 0u);
+  // The whole set as a subset of itself.
+  std::vector<std::uint32_t> every(set.count());
+  std::iota(every.begin(), every.end(), 0u);
+  expect_same_adjacency(set.subset(every), set, 0.0);
+}
+
+TEST(PatchSet, SubsetRefusesWhatIsNotWholeShells) {
+  const PatchSet set(testing::t_junction_pieces(testing::wavy_bicubic(), {0.3}));
+  const std::vector<std::uint32_t> none;
+  EXPECT_THROW((void)set.subset(none), InvalidInput);
+  const std::vector<std::uint32_t> long_edge_alone = {0};  // its parts are patches 1 and 2
+  EXPECT_THROW((void)set.subset(long_edge_alone), InvalidInput);
+  const std::vector<std::uint32_t> shared_cut = {0, 1};  // 1 shares an edge with 2
+  EXPECT_THROW((void)set.subset(shared_cut), InvalidInput);
+  const std::vector<std::uint32_t> backwards = {2, 1, 0};
+  EXPECT_THROW((void)set.subset(backwards), InvalidInput);
+  const std::vector<std::uint32_t> twice = {0, 1, 1, 2};
+  EXPECT_THROW((void)set.subset(twice), InvalidInput);
+  const std::vector<std::uint32_t> missing = {0, 1, 2, 3};
+  EXPECT_THROW((void)set.subset(missing), InvalidInput);
+  const std::vector<std::uint32_t> all = {0, 1, 2};
+  EXPECT_EQ(set.subset(all).t_junctions().size(), 1u);
 }
 
 }  // namespace
