@@ -1,5 +1,6 @@
 // parallel_for: every index once whatever the threads, the first error rethrown after the others
-// stop, and loops nested in bodies and loops run from several threads at once complete.
+// stop, loops nested in bodies and loops run from several threads at once complete, and loop
+// after loop runs on the same pool threads.
 
 #include <gtest/gtest.h>
 
@@ -58,6 +59,27 @@ TEST(ParallelFor, NestedLoopsAndConcurrentCallersComplete) {
   }
   for (std::thread& t : callers) t.join();
   EXPECT_EQ(total.load(), 4L * 20 * 8 * (15 * 16 / 2));
+}
+
+// The pool's threads live from loop to loop: a thread_local counter on a helper thread keeps
+// counting across loops (a thread made for one loop would start again from zero every loop).
+TEST(ParallelFor, LoopAfterLoopRunsOnThePoolsThreads) {
+  thread_local int bodies_on_this_thread = 0;
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<int> most{0};
+  constexpr int loops = 30;
+  constexpr int count = 16;
+  for (int loop = 0; loop < loops; ++loop) {
+    parallel_for(count, 2, [&](std::size_t) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      if (std::this_thread::get_id() == caller) return;
+      const int seen = ++bodies_on_this_thread;
+      int previous = most.load();
+      while (seen > previous && !most.compare_exchange_weak(previous, seen)) {
+      }
+    });
+  }
+  EXPECT_GT(most.load(), count) << "a helper thread ran no more than one loop's bodies";
 }
 
 }  // namespace
