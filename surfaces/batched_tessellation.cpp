@@ -56,8 +56,10 @@ Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOption
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::vector<std::uint32_t>> batches = tessellation_batches(set, batch_patches);
   if (batches.size() == 1 || options.camera || options.uv == UvMode::atlas) return tessellate(set, options);
+  // Bad options are reported as the single run reports them, not as a batch's.
+  detail::check_options(options);
   TessellationOptions batch_options = options;
-  if (options.relative_tolerance && !options.tolerance && !options.segments) {
+  if (options.relative_tolerance) {
     // What the tessellator computes for the whole set (a relative tolerance is of its tight box).
     batch_options.relative_tolerance.reset();
     batch_options.tolerance = *options.relative_tolerance * detail::tight_or_control_diagonal(set, true);
@@ -67,40 +69,42 @@ Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOption
   parts.reserve(batches.size());
   std::vector<std::vector<std::uint32_t>> patches_of_parts;
   patches_of_parts.reserve(batches.size());
-  std::int64_t triangles = 0;
-  {
-    // One Tessellation for every batch, so its scratch (patterns, per-piece arrays) keeps its
-    // storage from batch to batch; each batch's mesh is moved out of it.
-    Tessellation work;
-    for (std::size_t b = 0; b < batches.size(); ++b) {
-      const PatchSet subset = set.subset(batches[b]);
+  // The budget is checked on the tessellator's triangle estimate, as in the single run: a batch
+  // may have what the estimates of the batches before leave of max_triangles.
+  double estimated = 0.0;
+  // One Tessellation for every batch, so its scratch (patterns, per-piece arrays) keeps its
+  // storage from batch to batch; each batch's mesh is moved out of it.
+  Tessellation work;
+  set.for_each_subset(batches, [&](std::size_t b, const PatchSet& subset) {
+    batch_options.max_triangles = options.max_triangles - static_cast<std::int64_t>(estimated);
+    try {
       const PreparedSurface prepared(subset);
-      batch_options.max_triangles = options.max_triangles - triangles;
-      try {
-        tessellate(prepared, batch_options, work);
-      } catch (const InvalidInput& error) {
-        std::string_view what = error.what();
-        if (what.starts_with("tessellate: ")) what.remove_prefix(12);
-        throw InvalidInput(detail::message("tessellate: batch ", b + 1, " of ", batches.size(), " (patches ",
-                                           batches[b].front(), " to ", batches[b].back(), " of the set, ", triangles,
-                                           " triangles before it): ", what));
-      }
-      triangles += static_cast<std::int64_t>(work.mesh.triangle_count());
-      result.tolerance = std::max(result.tolerance, work.tolerance);
-      result.error_bound = std::max(result.error_bound, work.error_bound);
-      result.weld_gap = std::max(result.weld_gap, work.weld_gap);
-      result.measured_error = std::max(result.measured_error, work.measured_error);
-      result.measure_seconds += work.measure_seconds;
-      result.culled_patches += work.culled_patches;
-      result.culled_triangles += work.culled_triangles;
-      result.welded_vertices += work.welded_vertices;
-      for (std::uint32_t& patch : work.triangle_patches) patch = batches[b][patch];
-      patches_of_parts.push_back(std::move(work.triangle_patches));
-      work.triangle_patches = {};
-      parts.push_back(std::move(work.mesh));
-      work.mesh = RenderMesh();
+      tessellate(prepared, batch_options, work);
+    } catch (const InvalidInput& error) {
+      std::string_view what = error.what();
+      if (what.starts_with("tessellate: ")) what.remove_prefix(12);
+      throw InvalidInput(detail::message("tessellate: batch ", b + 1, " of ", batches.size(), " (", batches[b].size(),
+                                         " patches from patch ", batches[b].front(),
+                                         " of the set, numbered from 0 in the batch; the batches before need about ",
+                                         static_cast<std::int64_t>(estimated), " of the ", options.max_triangles,
+                                         " triangles allowed): ", what));
     }
-  }
+    estimated += work.scratch.get().estimated_triangles;
+    result.tolerance = std::max(result.tolerance, work.tolerance);
+    result.error_bound = std::max(result.error_bound, work.error_bound);
+    result.weld_gap = std::max(result.weld_gap, work.weld_gap);
+    result.measured_error = std::max(result.measured_error, work.measured_error);
+    result.measure_seconds += work.measure_seconds;
+    result.culled_patches += work.culled_patches;
+    result.culled_triangles += work.culled_triangles;
+    result.welded_vertices += work.welded_vertices;
+    for (std::uint32_t& patch : work.triangle_patches) patch = batches[b][patch];
+    patches_of_parts.push_back(std::move(work.triangle_patches));
+    work.triangle_patches = {};
+    parts.push_back(std::move(work.mesh));
+    work.mesh = RenderMesh();
+  });
+  work = Tessellation();
   // The parts' first vertices and position ids.
   std::vector<std::uint32_t> first_vertex(parts.size(), 0);
   std::vector<std::uint32_t> first_id(parts.size(), 0);

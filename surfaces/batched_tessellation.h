@@ -36,13 +36,16 @@ std::vector<std::vector<std::uint32_t>> tessellation_batches(const PatchSet& set
 
 /// tessellate(set, options), one batch (tessellation_batches) at a time (see the file comment):
 /// batch b is tessellated as tessellate(set.subset(batch b), options) with a relative tolerance
-/// replaced by the absolute one it names for the whole set and max_triangles less the triangles
-/// of the batches before. The mesh is the batches' meshes in order (indices and position_ids
+/// replaced by the absolute one it names for the whole set and max_triangles less the triangle
+/// estimates of the batches before (the budget is checked on the tessellator's estimate, as in
+/// the single run, summed over the batches). The mesh is the batches' meshes in order (indices and position_ids
 /// shifted past the batches before), triangle_patches are the set's patches; tolerance,
 /// error_bound, weld_gap and measured_error are the largest of the batches', the culled counts,
 /// welded_vertices and the seconds their sums. A single batch is exactly tessellate(set, options).
-/// \throws InvalidInput as tessellate(set, options) does (the triangle budget counted over every
-///         batch), or if batch_patches is 0.
+/// \throws InvalidInput as tessellate(set, options) does: bad options with its messages, before
+///         any batch; an error of a batch (the budget, a piece too fine) naming the batch, its
+///         first patch and the estimates before it (piece numbers count within the batch); or
+///         if batch_patches is 0.
 Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOptions& options,
                                    std::size_t batch_patches = default_batch_patches);
 

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <exception>
+#include <functional>
+#include <optional>
 #include <numeric>
 #include <unordered_map>
 #include <utility>
@@ -577,87 +579,128 @@ std::optional<EdgeRef> PatchSet::neighbour(EdgeRef edge) const {
 }
 
 PatchSet PatchSet::subset(std::span<const std::uint32_t> patches) const {
-  if (patches.empty()) throw InvalidInput("PatchSet::subset: no patches");
+  const std::vector<std::vector<std::uint32_t>> one{std::vector<std::uint32_t>(patches.begin(), patches.end())};
+  std::optional<PatchSet> made;
+  for_each_subset(one, [&](std::size_t, PatchSet& sub) { made.emplace(std::move(sub)); });
+  return std::move(*made);
+}
+
+void PatchSet::for_each_subset(std::span<const std::vector<std::uint32_t>> parts,
+                               const std::function<void(std::size_t, PatchSet&)>& use) const {
   constexpr std::uint32_t outside = 0xffffffffu;
-  std::vector<std::uint32_t> index(nets_.size(), outside);  // this set's patch -> the subset's
-  for (std::size_t k = 0; k < patches.size(); ++k) {
-    if (patches[k] >= nets_.size()) {
-      throw InvalidInput(detail::message("PatchSet::subset: patch ", patches[k], " of ", nets_.size(), " does not exist"));
+  std::vector<std::uint32_t> part_of(nets_.size(), outside);  // this set's patch -> its part
+  std::vector<std::uint32_t> index(nets_.size(), outside);    // -> its place in the part
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const std::vector<std::uint32_t>& patches = parts[k];
+    if (patches.empty()) throw InvalidInput(detail::message("PatchSet::subset: part ", k, " has no patches"));
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      const std::uint32_t p = patches[i];
+      if (p >= nets_.size()) {
+        throw InvalidInput(detail::message("PatchSet::subset: patch ", p, " of ", nets_.size(), " does not exist"));
+      }
+      if (i > 0 && p <= patches[i - 1]) {
+        throw InvalidInput(
+            detail::message("PatchSet::subset: patch ", p, " after ", patches[i - 1], ": the patches are not increasing"));
+      }
+      if (part_of[p] != outside) {
+        throw InvalidInput(detail::message("PatchSet::subset: patch ", p, " is in parts ", part_of[p], " and ", k));
+      }
+      part_of[p] = static_cast<std::uint32_t>(k);
+      index[p] = static_cast<std::uint32_t>(i);
     }
-    if (k > 0 && patches[k] <= patches[k - 1]) {
-      throw InvalidInput(detail::message("PatchSet::subset: patch ", patches[k], " after ", patches[k - 1],
-                                         ": the patches are not increasing"));
-    }
-    index[patches[k]] = static_cast<std::uint32_t>(k);
   }
-  const auto inside = [&](const EdgeRef& e) { return index[e.patch] != outside; };
-  const auto renumbered = [&](EdgeRef e) { return EdgeRef{index[e.patch], e.edge}; };
   const auto cut = [&](std::uint32_t in, std::uint32_t out) {
     return InvalidInput(detail::message("PatchSet::subset: patch ", in, " is joined to patch ", out,
-                                        ", which is left out (the subset cuts a shell)"));
+                                        ", which is not in its part (the part cuts a shell)"));
   };
-  PatchSet sub;
-  sub.nets_.reserve(patches.size());
-  for (const std::uint32_t p : patches) sub.nets_.push_back(nets_[p]);
-  if (rational_count_ > 0) {
-    sub.rational_.reserve(patches.size());
-    for (const std::uint32_t p : patches) sub.rational_.push_back(rational_[p]);
-    sub.rational_count_ = static_cast<std::size_t>(
-        std::count_if(sub.rational_.begin(), sub.rational_.end(), [](const auto& r) { return r.has_value(); }));
-    if (sub.rational_count_ == 0) sub.rational_.clear();
+  // Each element of this set to the part it belongs to, in one pass over each kind.
+  std::vector<std::vector<std::uint32_t>> shared_in(parts.size()), junctions_in(parts.size()),
+      collapsed_in(parts.size()), open_in(parts.size()), loops_in(parts.size()), touching_in(parts.size());
+  for (std::uint32_t i = 0; i < shared_.size(); ++i) {
+    const SharedEdge& s = shared_[i];
+    const std::uint32_t a = part_of[s.first.patch], b = part_of[s.second.patch];
+    if (a != b) throw a != outside ? cut(s.first.patch, s.second.patch) : cut(s.second.patch, s.first.patch);
+    if (a != outside) shared_in[a].push_back(i);
   }
-  sub.size_ = control_box_diagonal(sub.nets_);
-  sub.tolerance_ = tolerance_;
-  for (const SharedEdge& s : shared_) {
-    if (inside(s.first) != inside(s.second)) {
-      throw inside(s.first) ? cut(s.first.patch, s.second.patch) : cut(s.second.patch, s.first.patch);
+  for (std::uint32_t i = 0; i < t_junctions_.size(); ++i) {
+    const TJunction& t = t_junctions_[i];
+    const std::uint32_t a = part_of[t.edge.patch];
+    for (const EdgeRef& e : t.parts) {
+      if (part_of[e.patch] != a) throw a != outside ? cut(t.edge.patch, e.patch) : cut(e.patch, t.edge.patch);
     }
-    if (!inside(s.first)) continue;
-    SharedEdge edge = s;
-    edge.first = renumbered(s.first);
-    edge.second = renumbered(s.second);
-    sub.shared_.push_back(edge);
+    if (a != outside) junctions_in[a].push_back(i);
   }
-  for (const TJunction& t : t_junctions_) {
-    for (const EdgeRef& part : t.parts) {
-      if (inside(t.edge) != inside(part)) throw inside(t.edge) ? cut(t.edge.patch, part.patch) : cut(part.patch, t.edge.patch);
-    }
-    if (!inside(t.edge)) continue;
-    TJunction junction = t;
-    junction.edge = renumbered(t.edge);
-    for (EdgeRef& part : junction.parts) part = renumbered(part);
-    sub.t_junctions_.push_back(std::move(junction));
+  for (std::uint32_t i = 0; i < collapsed_.size(); ++i) {
+    if (part_of[collapsed_[i].patch] != outside) collapsed_in[part_of[collapsed_[i].patch]].push_back(i);
   }
-  for (const EdgeRef& e : collapsed_) {
-    if (inside(e)) sub.collapsed_.push_back(renumbered(e));
-  }
-  for (const EdgeRef& e : open_) {
-    if (inside(e)) sub.open_.push_back(renumbered(e));
+  for (std::uint32_t i = 0; i < open_.size(); ++i) {
+    if (part_of[open_[i].patch] != outside) open_in[part_of[open_[i].patch]].push_back(i);
   }
   // A loop's corners are joined through shared and collapsed edges and T-junctions (see the
-  // constructor): it lies in one shell, wholly inside or outside.
-  for (const BoundaryLoop& loop : loops_) {
-    if (!inside(loop.edges.front())) continue;
-    BoundaryLoop kept{{}, loop.closed};
-    kept.edges.reserve(loop.edges.size());
-    for (const EdgeRef& e : loop.edges) kept.edges.push_back(renumbered(e));
-    sub.loops_.push_back(std::move(kept));
+  // constructor): it lies in one shell, so in one part or none.
+  for (std::uint32_t i = 0; i < loops_.size(); ++i) {
+    const std::uint32_t a = part_of[loops_[i].edges.front().patch];
+    if (a != outside) loops_in[a].push_back(i);
   }
-  // A group of a touching point is edge-connected, so in one shell: kept or left out whole.
-  for (const TouchingPoint& point : touching_) {
-    TouchingPoint kept{point.point, {}};
-    for (const std::vector<std::uint32_t>& group : point.groups) {
-      if (index[group.front()] == outside) continue;
-      std::vector<std::uint32_t> members;
-      members.reserve(group.size());
-      for (const std::uint32_t p : group) members.push_back(index[p]);
-      kept.groups.push_back(std::move(members));
+  // A group of a touching point is edge-connected, so in one shell; a point's groups may be in
+  // several parts.
+  for (std::uint32_t i = 0; i < touching_.size(); ++i) {
+    for (const std::vector<std::uint32_t>& group : touching_[i].groups) {
+      const std::uint32_t a = part_of[group.front()];
+      if (a != outside && (touching_in[a].empty() || touching_in[a].back() != i)) touching_in[a].push_back(i);
     }
-    if (kept.groups.size() < 2) continue;
-    std::sort(kept.groups.begin(), kept.groups.end());
-    sub.touching_.push_back(std::move(kept));
   }
-  return sub;
+  const auto renumbered = [&](EdgeRef e) { return EdgeRef{index[e.patch], e.edge}; };
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const std::vector<std::uint32_t>& patches = parts[k];
+    PatchSet sub;
+    sub.nets_.reserve(patches.size());
+    for (const std::uint32_t p : patches) sub.nets_.push_back(nets_[p]);
+    if (rational_count_ > 0) {
+      sub.rational_.reserve(patches.size());
+      for (const std::uint32_t p : patches) sub.rational_.push_back(rational_[p]);
+      sub.rational_count_ = static_cast<std::size_t>(
+          std::count_if(sub.rational_.begin(), sub.rational_.end(), [](const auto& r) { return r.has_value(); }));
+      if (sub.rational_count_ == 0) sub.rational_.clear();
+    }
+    sub.size_ = control_box_diagonal(sub.nets_);
+    sub.tolerance_ = tolerance_;
+    sub.shared_.reserve(shared_in[k].size());
+    for (const std::uint32_t i : shared_in[k]) {
+      SharedEdge edge = shared_[i];
+      edge.first = renumbered(edge.first);
+      edge.second = renumbered(edge.second);
+      sub.shared_.push_back(edge);
+    }
+    for (const std::uint32_t i : junctions_in[k]) {
+      TJunction junction = t_junctions_[i];
+      junction.edge = renumbered(junction.edge);
+      for (EdgeRef& part : junction.parts) part = renumbered(part);
+      sub.t_junctions_.push_back(std::move(junction));
+    }
+    for (const std::uint32_t i : collapsed_in[k]) sub.collapsed_.push_back(renumbered(collapsed_[i]));
+    for (const std::uint32_t i : open_in[k]) sub.open_.push_back(renumbered(open_[i]));
+    for (const std::uint32_t i : loops_in[k]) {
+      BoundaryLoop kept{{}, loops_[i].closed};
+      kept.edges.reserve(loops_[i].edges.size());
+      for (const EdgeRef& e : loops_[i].edges) kept.edges.push_back(renumbered(e));
+      sub.loops_.push_back(std::move(kept));
+    }
+    for (const std::uint32_t i : touching_in[k]) {
+      TouchingPoint kept{touching_[i].point, {}};
+      for (const std::vector<std::uint32_t>& group : touching_[i].groups) {
+        if (part_of[group.front()] != k) continue;
+        std::vector<std::uint32_t> members;
+        members.reserve(group.size());
+        for (const std::uint32_t p : group) members.push_back(index[p]);
+        kept.groups.push_back(std::move(members));
+      }
+      if (kept.groups.size() < 2) continue;
+      std::sort(kept.groups.begin(), kept.groups.end());
+      sub.touching_.push_back(std::move(kept));
+    }
+    use(k, sub);
+  }
 }
 
 std::vector<Shell> shells(const PatchSet& set) {

@@ -19,6 +19,7 @@
 // touches its body at one point).
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <span>
@@ -163,10 +164,18 @@ class PatchSet {
   /// among them, not searched again: patch k of the subset is patches[k], every edge, loop and
   /// touching point renumbered so (a touching point keeps its groups in the subset, and is left
   /// out with fewer than two). The absolute tolerance stays this set's; size() is the diagonal
-  /// of the box of the subset's control points. Linear in the subset's adjacency.
+  /// of the box of the subset's control points. Linear in this set (for many subsets, see
+  /// for_each_subset).
   /// \throws InvalidInput if `patches` is empty, not increasing, names a patch that does not
   ///         exist, or cuts a shell.
   PatchSet subset(std::span<const std::uint32_t> patches) const;
+  /// subset(parts[k]) for k = 0, 1, ... in order, each handed to use(k, subset) and destroyed
+  /// before the next is made; no patch may be in two parts. Linear in this set and the parts
+  /// together (subset() once per part would be linear in the set each time).
+  /// \throws InvalidInput as subset() does for any part, or if a patch is in two parts, before
+  ///         `use` is first called; whatever `use` throws.
+  void for_each_subset(std::span<const std::vector<std::uint32_t>> parts,
+                       const std::function<void(std::size_t, PatchSet&)>& use) const;
 
  private:
   PatchSet() = default;

@@ -40,7 +40,7 @@ void Tessellator::run(Tessellation& result, bool keep_scratch) {
   // alone would take minutes and gigabytes).
   check_triangle_budget();
   if (!options_.segments) raise_rates_to_bounds();
-  check_triangle_budget();
+  result.scratch.get().estimated_triangles = check_triangle_budget();
   number_welded_points();
   // The per-patch arrays of the last run into `result` keep their storage (a caller tessellating
   // again and again then allocates next to nothing).

@@ -56,34 +56,42 @@ double pattern_bound(const TessellationPattern& boundary, const InnerGrid& inner
   return bound;
 }
 
-void Tessellator::plan_patches() {
-  const int modes = options_.tolerance.has_value() + options_.relative_tolerance.has_value() +
-                    options_.segments.has_value() + options_.camera.has_value();
+void check_options(const TessellationOptions& options) {
+  const int modes = options.tolerance.has_value() + options.relative_tolerance.has_value() +
+                    options.segments.has_value() + options.camera.has_value();
   if (modes != 1) {
     throw InvalidInput(
         detail::message("tessellate: give exactly one of tolerance, relative tolerance, segments "
                         "and camera (",
                         modes, " given)"));
   }
-  if (!(options_.crease_angle >= 0.0) || !std::isfinite(options_.crease_angle)) {
-    throw InvalidInput(detail::message("tessellate: crease angle ", options_.crease_angle, " is not >= 0"));
+  if (!(options.crease_angle >= 0.0) || !std::isfinite(options.crease_angle)) {
+    throw InvalidInput(detail::message("tessellate: crease angle ", options.crease_angle, " is not >= 0"));
   }
-  double tolerance = 0.0;
-  if (options_.tolerance) {
-    check_positive(*options_.tolerance, "tolerance");
-    tolerance = *options_.tolerance;
-  } else if (options_.relative_tolerance) {
-    check_positive(*options_.relative_tolerance, "relative tolerance");
-    tolerance = *options_.relative_tolerance * diagonal_;
-    check_positive(tolerance, "tolerance (relative tolerance times the box diagonal)");
-  } else if (options_.segments) {
-    if (*options_.segments < 1 || *options_.segments > (1 << 20)) {
-      throw InvalidInput(detail::message("tessellate: segments ", *options_.segments, " is not in [1, 2^20]"));
+  if (options.tolerance) {
+    check_positive(*options.tolerance, "tolerance");
+  } else if (options.relative_tolerance) {
+    check_positive(*options.relative_tolerance, "relative tolerance");
+  } else if (options.segments) {
+    if (*options.segments < 1 || *options.segments > (1 << 20)) {
+      throw InvalidInput(detail::message("tessellate: segments ", *options.segments, " is not in [1, 2^20]"));
     }
   } else {
-    if (pieces_.patches == nullptr) throw InvalidInput("tessellate: the camera mode needs Bezier patches");
-    validate(*options_.camera);
-    check_positive(options_.pixel_tolerance, "pixel tolerance");
+    validate(*options.camera);
+    check_positive(options.pixel_tolerance, "pixel tolerance");
+  }
+}
+
+void Tessellator::plan_patches() {
+  check_options(options_);
+  double tolerance = 0.0;
+  if (options_.tolerance) {
+    tolerance = *options_.tolerance;
+  } else if (options_.relative_tolerance) {
+    tolerance = *options_.relative_tolerance * diagonal_;
+    check_positive(tolerance, "tolerance (relative tolerance times the box diagonal)");
+  } else if (options_.camera && pieces_.patches == nullptr) {
+    throw InvalidInput("tessellate: the camera mode needs Bezier patches");
   }
   double focal = options_.camera ? focal_length_pixels(*options_.camera) : 0.0;
   const std::vector<bool> back_faces_hidden =
@@ -359,7 +367,7 @@ double Tessellator::pattern_bound_of(std::uint32_t p, const PatternRates& r) {
   return pattern_bound(boundary, inner, *plan.bounds, plan.cell_bound(inner.u, inner.v), surface, target);
 }
 
-void Tessellator::check_triangle_budget() const {
+double Tessellator::check_triangle_budget() const {
   double triangles = 0.0;
   for (std::uint32_t p = 0; p < count_; ++p) {
     if (plans_[p].culled) continue;
@@ -371,6 +379,7 @@ void Tessellator::check_triangle_budget() const {
     throw InvalidInput(detail::message("tessellate: about ", static_cast<std::int64_t>(triangles),
                                        " triangles needed, more than the limit of ", options_.max_triangles));
   }
+  return triangles;
 }
 
 }  // namespace patchwork::detail

@@ -351,6 +351,9 @@ struct TessellatorScratch {
   std::vector<Vec3> welded_positions;
   std::vector<VertexSource> sources;
   std::vector<std::uint8_t> pole;  // by welded id: a collapsed edge's point
+  // The last run's triangle estimate, as its budget was checked (tessellate_in_batches counts
+  // the budget over its batches with it).
+  double estimated_triangles = 0.0;
   std::vector<std::uint32_t> first_vertex;
   ChainHeads heads;
   std::vector<std::uint32_t> next_vertex;
@@ -406,6 +409,11 @@ inline void check_positive(double value, const char* name) {
     throw InvalidInput(message("tessellate: ", name, " ", value, " is not positive and finite"));
   }
 }
+
+/// The checks of `options` that need no surface: exactly one mode, and its values (a tolerance,
+/// relative tolerance or pixel tolerance positive and finite, segments in [1, 2^20], the camera
+/// valid), the crease angle >= 0. \throws InvalidInput naming the first that fails.
+void check_options(const TessellationOptions& options);
 
 // Whether parameter triangle (a, b, c) is one half of a grid cell of steps (du, dv), split along
 // its diagonal from the low to the high corner (either half, in any vertex order).
@@ -499,7 +507,9 @@ class Tessellator {
   // tolerance where it has one (pattern_bound).
   double pattern_bound_of(std::uint32_t p, const PatternRates& r);
 
-  void check_triangle_budget() const;
+  // The triangle estimate the budget is checked on (2 max(nu,2) max(nv,2) plus the edge rates
+  // a piece), which it returns. \throws InvalidInput above options_.max_triangles.
+  double check_triangle_budget() const;
 
   // --- welding ----------------------------------------------------------------------------
 

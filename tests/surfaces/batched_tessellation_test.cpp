@@ -12,6 +12,8 @@
 #include "meshes/topology.h"
 #include "surfaces/patch_bounding_box.h"
 #include "surfaces/patch_transform.h"
+#include "surfaces/prepared_surface.h"
+#include "surfaces/tessellator_stages.h"
 #include "tests/surfaces/rational_shapes.h"
 #include "tests/surfaces/tessellation_checks.h"
 
@@ -206,20 +208,59 @@ TEST(TessellateInBatches, DoesNotDependOnTheThreadCount) {
   testing::expect_identical_tessellations(a, b);
 }
 
-// The triangle budget is the whole set's: a limit one below the batches' total stops the last
-// batch, with a message naming it; a batch before it has used its share.
+// The triangle budget is checked on the tessellator's estimate summed over the batches (each
+// batch's from its own run, kept in the scratch): one triangle short of the sum stops the last
+// batch, before it is made, with a message naming it; the sum itself passes.
 TEST(TessellateInBatches, CountsTheTriangleBudgetOverEveryBatch) {
   const PatchSet& set = scene();
+  const std::vector<std::vector<std::uint32_t>> batches = tessellation_batches(set, 40);
+  double estimated = 0.0;
+  for (const std::vector<std::uint32_t>& batch : batches) {
+    const PatchSet subset = set.subset(batch);
+    const PreparedSurface prepared(subset);
+    Tessellation part;
+    tessellate(prepared, absolute(0.004), part);
+    estimated += part.scratch.get().estimated_triangles;
+  }
   const Tessellation all = tessellate_in_batches(set, absolute(0.004), 40);
+  ASSERT_GT(estimated, static_cast<double>(all.mesh.triangle_count()));
   TessellationOptions limited = absolute(0.004);
-  limited.max_triangles = static_cast<std::int64_t>(all.mesh.triangle_count()) - 1;
+  limited.max_triangles = static_cast<std::int64_t>(estimated);
+  EXPECT_EQ(tessellate_in_batches(set, limited, 40).mesh.triangle_count(), all.mesh.triangle_count());
+  limited.max_triangles = static_cast<std::int64_t>(estimated) - 1;
   try {
     (void)tessellate_in_batches(set, limited, 40);
     ADD_FAILURE() << "no error at " << limited.max_triangles << " triangles";
   } catch (const InvalidInput& error) {
     const std::string what = error.what();
-    EXPECT_NE(what.find("tessellate: batch "), std::string::npos) << what;
+    const std::string last = detail::message("tessellate: batch ", batches.size(), " of ", batches.size(), " (");
+    EXPECT_EQ(what.rfind(last, 0), 0u) << what;
     EXPECT_NE(what.find("more than the limit"), std::string::npos) << what;
+  }
+}
+
+// Bad options get the single run's message, not a batch's.
+TEST(TessellateInBatches, ReportsBadOptionsAsTheSingleRunDoes) {
+  const PatchSet& set = scene();
+  TessellationOptions negative = relative(-1e-3);
+  TessellationOptions crease = absolute(0.004);
+  crease.crease_angle = -1.0;
+  TessellationOptions two_modes = absolute(0.004);
+  two_modes.segments = 3;
+  for (const TessellationOptions& options : {negative, crease, two_modes}) {
+    std::string single, batched;
+    try {
+      (void)tessellate(set, options);
+    } catch (const InvalidInput& error) {
+      single = error.what();
+    }
+    try {
+      (void)tessellate_in_batches(set, options, 40);
+    } catch (const InvalidInput& error) {
+      batched = error.what();
+    }
+    EXPECT_FALSE(single.empty());
+    EXPECT_EQ(batched, single);
   }
 }
 

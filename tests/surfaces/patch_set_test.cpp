@@ -522,6 +522,22 @@ TEST(PatchSet, SubsetOfWholeShellsKeepsTheAdjacency) {
     with_junction += !subset.t_junctions().empty();
     rational += subset.rational_count() > 0;
   }
+  // All shells at once, one subset after the other: each the subset of its shell.
+  std::vector<std::vector<std::uint32_t>> each_shell;
+  for (const Shell& shell : parts) each_shell.push_back(shell.patches);
+  std::size_t handed = 0;
+  set.for_each_subset(each_shell, [&](std::size_t k, PatchSet& sub) {
+    SCOPED_TRACE(detail::message("for_each_subset part ", k));
+    EXPECT_EQ(k, handed++);
+    const PatchSet alone = set.subset(each_shell[k]);
+    EXPECT_EQ(sub.size(), alone.size());
+    EXPECT_EQ(sub.tolerance(), alone.tolerance());
+    for (std::uint32_t p = 0; p < sub.count(); ++p) {
+      EXPECT_EQ(sub.control_nets()[p].control_points(), alone.control_nets()[p].control_points());
+    }
+    expect_same_adjacency(sub, alone, 0.0);
+  });
+  EXPECT_EQ(handed, parts.size());
   // The cases the scene is for did occur.
   EXPECT_GT(with_touching, 0u);
   EXPECT_GT(with_junction, 0u);
@@ -548,6 +564,21 @@ TEST(PatchSet, SubsetRefusesWhatIsNotWholeShells) {
   EXPECT_THROW((void)set.subset(missing), InvalidInput);
   const std::vector<std::uint32_t> all = {0, 1, 2};
   EXPECT_EQ(set.subset(all).t_junctions().size(), 1u);
+  // A shared edge alone (no T-junction): two squares side by side, one of them taken.
+  const PatchSet squares(square_grid(1, 2));
+  ASSERT_EQ(squares.shared_edges().size(), 1u);
+  const std::vector<std::uint32_t> left = {0};
+  EXPECT_THROW((void)squares.subset(left), InvalidInput);
+  // Two parts, each cutting the pair; a patch in two parts.
+  const std::vector<std::vector<std::uint32_t>> apart = {{0}, {1}};
+  const std::vector<std::vector<std::uint32_t>> overlapping = {{0, 1}, {1}};
+  const auto nothing = [](std::size_t, PatchSet&) {};
+  EXPECT_THROW(squares.for_each_subset(apart, nothing), InvalidInput);
+  EXPECT_THROW(squares.for_each_subset(overlapping, nothing), InvalidInput);
+  const std::vector<std::vector<std::uint32_t>> whole = {{0, 1}};
+  std::size_t made = 0;
+  squares.for_each_subset(whole, [&](std::size_t, PatchSet& sub) { made += sub.shared_edges().size(); });
+  EXPECT_EQ(made, 1u);
 }
 
 }  // namespace
