@@ -1,5 +1,6 @@
-// tessellate() over patch sets, prepared surfaces and subdivision limit surfaces; Camera,
-// Tessellation (its arrays as views), PreparedSurface and write_gltf in Python.
+// tessellate() over patch sets, prepared surfaces and subdivision limit surfaces, and
+// tessellate_in_batches() over patch sets; Camera, Tessellation (its arrays as views),
+// PreparedSurface and write_gltf in Python.
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -13,6 +14,7 @@
 #include "python/bindings.h"
 #include "python/render_arrays.h"
 #include "subdivision/limit_tessellator.h"
+#include "surfaces/batched_tessellation.h"
 #include "surfaces/prepared_surface.h"
 #include "surfaces/tessellator.h"
 
@@ -72,25 +74,27 @@ struct OptionArguments {
   }
 };
 
-// Registers tessellate(surface, *, options...) for one kind of surface; `run` tessellates it
-// (without the GIL).
-template <class Surface, class Run>
-void def_tessellate(py::module_& m, Run run) {
+// Registers `name`(surface, *, options..., extra...) for one kind of surface; `run`(surface,
+// options, extra...) tessellates it (without the GIL). `extra_args` name the Extra parameters,
+// keyword-only after the options.
+template <class Surface, class... Extra, class Run, class... ExtraArgs>
+void def_tessellate(py::module_& m, const char* name, const char* doc, Run run, ExtraArgs... extra_args) {
+  static_assert(sizeof...(Extra) == sizeof...(ExtraArgs), "one py::arg per extra parameter");
   const TessellationOptions defaults;
   m.def(
-      "tessellate",
+      name,
       [run](const Surface& surface, std::optional<double> tolerance, std::optional<double> relative_tolerance,
             std::optional<int> segments, std::optional<Camera> camera, double pixel_tolerance,
             std::string back_face_culling, double crease_angle, std::string uv, bool tangents, int threads,
             bool measure, bool optimize, std::int64_t max_triangles, bool split_patches,
-            std::optional<bool> streaming_stores) {
+            std::optional<bool> streaming_stores, Extra... extra) {
         const TessellationOptions options =
             OptionArguments{tolerance,    relative_tolerance, segments,     camera,           pixel_tolerance,
                             std::move(back_face_culling), crease_angle, std::move(uv), tangents, threads,
                             measure,      optimize,           max_triangles, split_patches,  streaming_stores}
                 .options();
         py::gil_scoped_release release;
-        return run(surface, options);
+        return run(surface, options, extra...);
       },
       py::arg("surface"), py::kw_only(), py::arg("tolerance") = py::none(), py::arg("relative_tolerance") = py::none(),
       py::arg("segments") = py::none(), py::arg("camera") = py::none(),
@@ -98,11 +102,13 @@ void def_tessellate(py::module_& m, Run run) {
       py::arg("crease_angle") = defaults.crease_angle, py::arg("uv") = "patch", py::arg("tangents") = defaults.tangents,
       py::arg("threads") = defaults.threads, py::arg("measure") = defaults.measure,
       py::arg("optimize") = defaults.optimize, py::arg("max_triangles") = defaults.max_triangles,
-      py::arg("split_patches") = defaults.split_patches, py::arg("streaming_stores") = py::none(),
-      "A triangle mesh within a guaranteed error of the surface. Exactly one of tolerance (model units), "
-      "relative_tolerance (of the tight box diagonal), segments (uniform N x N per patch) and camera (with "
-      "pixel_tolerance). The GIL is released while it runs.");
+      py::arg("split_patches") = defaults.split_patches, py::arg("streaming_stores") = py::none(), extra_args..., doc);
 }
+
+constexpr const char* tessellate_doc =
+    "A triangle mesh within a guaranteed error of the surface. Exactly one of tolerance (model units), "
+    "relative_tolerance (of the tight box diagonal), segments (uniform N x N per patch) and camera (with "
+    "pixel_tolerance). The GIL is released while it runs.";
 
 }  // namespace
 
@@ -158,11 +164,26 @@ void bind_tessellation(py::module_& m) {
           "patch_set", [](const PreparedSurface& p) -> const PatchSet& { return p.set(); },
           py::return_value_policy::reference_internal, "The patch set prepared.");
 
-  def_tessellate<PatchSet>(m, [](const PatchSet& set, const TessellationOptions& o) { return tessellate(set, o); });
-  def_tessellate<PreparedSurface>(
-      m, [](const PreparedSurface& prepared, const TessellationOptions& o) { return tessellate(prepared, o); });
-  def_tessellate<LimitSurface>(
-      m, [](const LimitSurface& surface, const TessellationOptions& o) { return tessellate_limit(surface, o); });
+  def_tessellate<PatchSet>(m, "tessellate", tessellate_doc,
+                           [](const PatchSet& set, const TessellationOptions& o) { return tessellate(set, o); });
+  def_tessellate<PreparedSurface>(m, "tessellate", tessellate_doc,
+                                  [](const PreparedSurface& prepared, const TessellationOptions& o) {
+                                    return tessellate(prepared, o);
+                                  });
+  def_tessellate<LimitSurface>(m, "tessellate", tessellate_doc,
+                               [](const LimitSurface& surface, const TessellationOptions& o) {
+                                 return tessellate_limit(surface, o);
+                               });
+  def_tessellate<PatchSet, std::size_t>(
+      m, "tessellate_in_batches",
+      "tessellate(patch_set, ...) a batch of whole shells (at least batch_patches patches) at a time into one "
+      "mesh: one batch's working memory instead of the whole set's, every guarantee kept; each batch chooses its "
+      "own split and vertex order. A camera, atlas UVs or a single batch give exactly tessellate(). The GIL is "
+      "released while it runs.",
+      [](const PatchSet& set, const TessellationOptions& o, std::size_t batch_patches) {
+        return tessellate_in_batches(set, o, batch_patches);
+      },
+      py::arg("batch_patches") = default_batch_patches);
 
   const auto write = [](const std::filesystem::path& path, const RenderMesh& mesh, bool z_up, std::optional<bool> double_sided,
                         const std::string& name) {

@@ -343,6 +343,26 @@ def tessellate(
     split_patches: bool = True,
     streaming_stores: bool | None = None,
 ) -> Tessellation: ...
+def tessellate_in_batches(
+    surface: PatchSet,
+    *,
+    tolerance: float | None = None,
+    relative_tolerance: float | None = None,
+    segments: int | None = None,
+    camera: Camera | None = None,
+    pixel_tolerance: float = 0.5,
+    back_face_culling: str = "automatic",
+    crease_angle: float = ...,
+    uv: str = "patch",
+    tangents: bool = False,
+    threads: int = 0,
+    measure: bool = True,
+    optimize: bool = True,
+    max_triangles: int = 100000000,
+    split_patches: bool = True,
+    streaming_stores: bool | None = None,
+    batch_patches: int = 1024,
+) -> Tessellation: ...
 def write_gltf(
     path: _Path,
     mesh: Tessellation | RenderMesh,

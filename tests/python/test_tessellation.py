@@ -87,6 +87,25 @@ def test_prepared_surface_gives_the_plain_result(teapot: pw.PatchSet) -> None:
     assert len(prepared.patch_set) == 32
 
 
+def test_batches_keep_the_guarantee_and_one_batch_is_the_plain_result(teapot: pw.PatchSet) -> None:
+    plain = pw.tessellate(teapot, relative_tolerance=1e-3)
+    one = pw.tessellate_in_batches(teapot, relative_tolerance=1e-3, batch_patches=10_000)
+    assert one.positions.tobytes() == plain.positions.tobytes()
+    assert one.indices.tobytes() == plain.indices.tobytes()
+    # One batch a shell (the teapot has several): the same tolerance, the bound met, every patch
+    # in the mesh, and the same mesh on one thread as on two.
+    shells = pw.tessellate_in_batches(teapot, relative_tolerance=1e-3, batch_patches=1, threads=2)
+    assert shells.tolerance == plain.tolerance
+    assert shells.measured_error <= shells.error_bound <= shells.tolerance
+    assert set(np.unique(shells.triangle_patches)) == set(range(32))
+    assert int(shells.indices.max()) < shells.vertex_count
+    single = pw.tessellate_in_batches(teapot, relative_tolerance=1e-3, batch_patches=1, threads=1)
+    assert single.positions.tobytes() == shells.positions.tobytes()
+    assert single.indices.tobytes() == shells.indices.tobytes()
+    with pytest.raises(pw.InvalidInput):
+        pw.tessellate_in_batches(teapot, relative_tolerance=1e-3, batch_patches=0)
+
+
 def test_options_reach_the_tessellator(teapot: pw.PatchSet) -> None:
     uniform = pw.tessellate(teapot, segments=2, split_patches=False, optimize=False, measure=False)
     assert uniform.measured_error == 0.0
