@@ -1,5 +1,7 @@
 #include "core/parallel.h"
 
+#include <unistd.h>
+
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -17,22 +19,19 @@ thread_local bool on_pool = false;
 
 // Threads that wait for work between calls. A call publishes its work as a new generation; each
 // thread runs each generation at most once, if its index is below the generation's count.
+// The pool is never destroyed (pool()): its threads wait until the process ends, so a loop run
+// while static objects are destroyed, or by another thread while the process exits, finds it
+// whole. A process forked from this one has none of its threads: there, calls make their own.
 class Pool {
  public:
   Pool() = default;
   Pool(const Pool&) = delete;
   Pool& operator=(const Pool&) = delete;
-  ~Pool() {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      stopping_ = true;
-    }
-    wake_.notify_all();
-    for (std::thread& thread : threads_) thread.join();
-  }
 
   bool run(std::size_t workers, void (*work)(void*), void* context) noexcept {
-    if (on_pool) return false;
+    // getpid() is not cached by glibc: a forked child sees its own pid, and must not wait for
+    // threads it does not have (nor touch mutexes another thread may have held at the fork).
+    if (on_pool || ::getpid() != owner_) return false;
     std::unique_lock<std::mutex> dispatch(dispatch_, std::try_to_lock);
     if (!dispatch.owns_lock()) return false;
     std::size_t helpers = workers - 1;
@@ -67,12 +66,12 @@ class Pool {
   }
 
  private:
-  void loop(std::size_t index, std::uint64_t seen) {
+  // A pool thread: waits for each generation it is wanted for, runs it, and never returns.
+  [[noreturn]] void loop(std::size_t index, std::uint64_t seen) {
     on_pool = true;
     std::unique_lock<std::mutex> lock(mutex_);
     while (true) {
-      wake_.wait(lock, [&] { return stopping_ || (generation_ != seen && index < wanted_); });
-      if (stopping_) return;
+      wake_.wait(lock, [&] { return generation_ != seen && index < wanted_; });
       seen = generation_;
       void (*const work)(void*) = work_;
       void* const context = context_;
@@ -93,12 +92,12 @@ class Pool {
   std::size_t wanted_ = 0;   // threads that run the current generation
   std::size_t running_ = 0;  // of those, still running it
   std::uint64_t generation_ = 0;
-  bool stopping_ = false;
+  const pid_t owner_ = ::getpid();
 };
 
 Pool& pool() {
-  static Pool instance;
-  return instance;
+  static Pool* const instance = new Pool;  // never deleted (see Pool)
+  return *instance;
 }
 
 }  // namespace

@@ -7,7 +7,8 @@
 // for each cost more than the small ones' work (the teapot from the command line ran no faster
 // on 2 threads than on 1), and lost the threads' thread_local buffers every time. One loop uses
 // the pool at a time; a loop that finds it taken (another thread's loop, or a loop inside a
-// loop's body) makes its own threads, as every loop did before.
+// loop's body), or that runs in a process forked from the pool's, makes its own threads, as
+// every loop did before. The pool is never destroyed: it is whole for loops run at exit.
 
 #include <algorithm>
 #include <atomic>
@@ -30,8 +31,8 @@ namespace detail {
 /// Calls work(context) on the calling thread and at the same time on workers - 1 threads of the
 /// process's pool (made on first use, kept for later calls), and returns once every call has
 /// returned. `work` must not throw. Returns false, having called nothing, when the pool is in
-/// use (by another thread's call, or by a call this thread is inside of) or no pool thread can
-/// be made.
+/// use (by another thread's call, or by a call this thread is inside of), this process was
+/// forked from the one that made the pool, or no pool thread can be made.
 bool run_on_pool(std::size_t workers, void (*work)(void*), void* context) noexcept;
 
 }  // namespace detail

@@ -62,15 +62,18 @@ Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOption
   if (options.relative_tolerance) {
     // What the tessellator computes for the whole set (a relative tolerance is of its tight box).
     batch_options.relative_tolerance.reset();
-    batch_options.tolerance = *options.relative_tolerance * detail::tight_or_control_diagonal(set, true);
+    batch_options.tolerance =
+        detail::relative_tolerance_times(*options.relative_tolerance, detail::tight_or_control_diagonal(set, true));
   }
   Tessellation result;
   std::vector<RenderMesh> parts;
   parts.reserve(batches.size());
   std::vector<std::vector<std::uint32_t>> patches_of_parts;
   patches_of_parts.reserve(batches.size());
-  // The budget is checked on the tessellator's triangle estimate, as in the single run: a batch
-  // may have what the estimates of the batches before leave of max_triangles.
+  // The budget is checked on the tessellator's triangle estimate, as in the single run, summed
+  // over the batches: a batch may have what the estimates of the batches before leave of
+  // max_triangles (each batch's estimate is of its own split, so the sum can differ a little
+  // from the single run's estimate).
   double estimated = 0.0;
   // One Tessellation for every batch, so its scratch (patterns, per-piece arrays) keeps its
   // storage from batch to batch; each batch's mesh is moved out of it.

@@ -38,7 +38,7 @@ std::vector<std::vector<std::uint32_t>> tessellation_batches(const PatchSet& set
 /// batch b is tessellated as tessellate(set.subset(batch b), options) with a relative tolerance
 /// replaced by the absolute one it names for the whole set and max_triangles less the triangle
 /// estimates of the batches before (the budget is checked on the tessellator's estimate, as in
-/// the single run, summed over the batches). The mesh is the batches' meshes in order (indices and position_ids
+/// the single run, summed over the batches; each batch's is of its own split). The mesh is the batches' meshes in order (indices and position_ids
 /// shifted past the batches before), triangle_patches are the set's patches; tolerance,
 /// error_bound, weld_gap and measured_error are the largest of the batches', the culled counts,
 /// welded_vertices and the seconds their sums. A single batch is exactly tessellate(set, options).

@@ -615,7 +615,8 @@ void PatchSet::for_each_subset(std::span<const std::vector<std::uint32_t>> parts
   };
   // Each element of this set to the part it belongs to, in one pass over each kind.
   std::vector<std::vector<std::uint32_t>> shared_in(parts.size()), junctions_in(parts.size()),
-      collapsed_in(parts.size()), open_in(parts.size()), loops_in(parts.size()), touching_in(parts.size());
+      collapsed_in(parts.size()), open_in(parts.size()), loops_in(parts.size());
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> touching_in(parts.size());  // (point, group)
   for (std::uint32_t i = 0; i < shared_.size(); ++i) {
     const SharedEdge& s = shared_[i];
     const std::uint32_t a = part_of[s.first.patch], b = part_of[s.second.patch];
@@ -645,9 +646,9 @@ void PatchSet::for_each_subset(std::span<const std::vector<std::uint32_t>> parts
   // A group of a touching point is edge-connected, so in one shell; a point's groups may be in
   // several parts.
   for (std::uint32_t i = 0; i < touching_.size(); ++i) {
-    for (const std::vector<std::uint32_t>& group : touching_[i].groups) {
-      const std::uint32_t a = part_of[group.front()];
-      if (a != outside && (touching_in[a].empty() || touching_in[a].back() != i)) touching_in[a].push_back(i);
+    for (std::uint32_t g = 0; g < touching_[i].groups.size(); ++g) {
+      const std::uint32_t a = part_of[touching_[i].groups[g].front()];
+      if (a != outside) touching_in[a].emplace_back(i, g);
     }
   }
   const auto renumbered = [&](EdgeRef e) { return EdgeRef{index[e.patch], e.edge}; };
@@ -686,10 +687,13 @@ void PatchSet::for_each_subset(std::span<const std::vector<std::uint32_t>> parts
       for (const EdgeRef& e : loops_[i].edges) kept.edges.push_back(renumbered(e));
       sub.loops_.push_back(std::move(kept));
     }
-    for (const std::uint32_t i : touching_in[k]) {
+    // The entries of one point are consecutive (points in order, then their groups).
+    const auto& entries = touching_in[k];
+    for (std::size_t e = 0; e < entries.size();) {
+      const std::uint32_t i = entries[e].first;
       TouchingPoint kept{touching_[i].point, {}};
-      for (const std::vector<std::uint32_t>& group : touching_[i].groups) {
-        if (part_of[group.front()] != k) continue;
+      for (; e < entries.size() && entries[e].first == i; ++e) {
+        const std::vector<std::uint32_t>& group = touching_[i].groups[entries[e].second];
         std::vector<std::uint32_t> members;
         members.reserve(group.size());
         for (const std::uint32_t p : group) members.push_back(index[p]);

@@ -56,7 +56,7 @@ double pattern_bound(const TessellationPattern& boundary, const InnerGrid& inner
   return bound;
 }
 
-void check_options(const TessellationOptions& options) {
+void check_options(const TessellationOptions& options, bool bezier_patches) {
   const int modes = options.tolerance.has_value() + options.relative_tolerance.has_value() +
                     options.segments.has_value() + options.camera.has_value();
   if (modes != 1) {
@@ -77,21 +77,19 @@ void check_options(const TessellationOptions& options) {
       throw InvalidInput(detail::message("tessellate: segments ", *options.segments, " is not in [1, 2^20]"));
     }
   } else {
+    if (!bezier_patches) throw InvalidInput("tessellate: the camera mode needs Bezier patches");
     validate(*options.camera);
     check_positive(options.pixel_tolerance, "pixel tolerance");
   }
 }
 
 void Tessellator::plan_patches() {
-  check_options(options_);
+  check_options(options_, pieces_.patches != nullptr);
   double tolerance = 0.0;
   if (options_.tolerance) {
     tolerance = *options_.tolerance;
   } else if (options_.relative_tolerance) {
-    tolerance = *options_.relative_tolerance * diagonal_;
-    check_positive(tolerance, "tolerance (relative tolerance times the box diagonal)");
-  } else if (options_.camera && pieces_.patches == nullptr) {
-    throw InvalidInput("tessellate: the camera mode needs Bezier patches");
+    tolerance = relative_tolerance_times(*options_.relative_tolerance, diagonal_);
   }
   double focal = options_.camera ? focal_length_pixels(*options_.camera) : 0.0;
   const std::vector<bool> back_faces_hidden =

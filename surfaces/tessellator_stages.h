@@ -412,8 +412,17 @@ inline void check_positive(double value, const char* name) {
 
 /// The checks of `options` that need no surface: exactly one mode, and its values (a tolerance,
 /// relative tolerance or pixel tolerance positive and finite, segments in [1, 2^20], the camera
-/// valid), the crease angle >= 0. \throws InvalidInput naming the first that fails.
-void check_options(const TessellationOptions& options);
+/// valid and, `bezier_patches`, pieces that have them), the crease angle >= 0.
+/// \throws InvalidInput naming the first that fails.
+void check_options(const TessellationOptions& options, bool bezier_patches = true);
+
+/// The absolute tolerance of a relative one on a surface of box diagonal `diagonal`.
+/// \throws InvalidInput if it is not positive and finite.
+inline double relative_tolerance_times(double relative, double diagonal) {
+  const double tolerance = relative * diagonal;
+  check_positive(tolerance, "tolerance (relative tolerance times the box diagonal)");
+  return tolerance;
+}
 
 // Whether parameter triangle (a, b, c) is one half of a grid cell of steps (du, dv), split along
 // its diagonal from the low to the high corner (either half, in any vertex order).

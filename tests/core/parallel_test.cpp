@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
@@ -61,25 +65,53 @@ TEST(ParallelFor, NestedLoopsAndConcurrentCallersComplete) {
   EXPECT_EQ(total.load(), 4L * 20 * 8 * (15 * 16 / 2));
 }
 
-// The pool's threads live from loop to loop: a thread_local counter on a helper thread keeps
+// The pool's threads live from loop to loop: a thread_local counter on the helper thread keeps
 // counting across loops (a thread made for one loop would start again from zero every loop).
+// Each loop has two indices whose bodies wait for each other, so the helper takes one every loop.
 TEST(ParallelFor, LoopAfterLoopRunsOnThePoolsThreads) {
   thread_local int bodies_on_this_thread = 0;
   const std::thread::id caller = std::this_thread::get_id();
-  std::atomic<int> most{0};
-  constexpr int loops = 30;
-  constexpr int count = 16;
+  int most = 0;
+  constexpr int loops = 20;
   for (int loop = 0; loop < loops; ++loop) {
-    parallel_for(count, 2, [&](std::size_t) {
-      std::this_thread::sleep_for(std::chrono::microseconds(200));
-      if (std::this_thread::get_id() == caller) return;
-      const int seen = ++bodies_on_this_thread;
-      int previous = most.load();
-      while (seen > previous && !most.compare_exchange_weak(previous, seen)) {
-      }
+    std::atomic<int> started{0};
+    parallel_for(2, 2, [&](std::size_t) {
+      ++started;
+      // Both bodies at once (a second of patience, not a hang, if that cannot happen).
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+      while (started.load() < 2 && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+      if (std::this_thread::get_id() != caller) most = ++bodies_on_this_thread;
     });
   }
-  EXPECT_GT(most.load(), count) << "a helper thread ran no more than one loop's bodies";
+  EXPECT_EQ(most, loops) << "the helper thread of the last loop ran " << most << " of the " << loops << " loops";
+}
+
+// A process forked after loops have run has none of the pool's threads: its loops make their own
+// and complete (with the pool's threads it would wait for them forever).
+TEST(ParallelFor, ForkedChildRunsItsLoops) {
+  std::atomic<int> warm{0};
+  parallel_for(64, 2, [&](std::size_t) { ++warm; });
+  ASSERT_EQ(warm.load(), 64);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::atomic<int> seen{0};
+    parallel_for(1000, 2, [&](std::size_t) { ++seen; });
+    ::_exit(seen.load() == 1000 ? 0 : 1);
+  }
+  int status = 0;
+  pid_t done = 0;
+  for (int wait = 0; wait < 1000 && done == 0; ++wait) {
+    done = ::waitpid(child, &status, WNOHANG);
+    if (done == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (done == 0) {
+    ::kill(child, SIGKILL);
+    ::waitpid(child, &status, 0);
+    FAIL() << "the forked child's loop did not finish in 10 s";
+  }
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
 }
 
 }  // namespace

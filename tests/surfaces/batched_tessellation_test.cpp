@@ -247,7 +247,9 @@ TEST(TessellateInBatches, ReportsBadOptionsAsTheSingleRunDoes) {
   crease.crease_angle = -1.0;
   TessellationOptions two_modes = absolute(0.004);
   two_modes.segments = 3;
-  for (const TessellationOptions& options : {negative, crease, two_modes}) {
+  // Finite, but not times the diagonal: the product is checked as the single run checks it.
+  TessellationOptions overflowing = relative(1e308);
+  for (const TessellationOptions& options : {negative, crease, two_modes, overflowing}) {
     std::string single, batched;
     try {
       (void)tessellate(set, options);
