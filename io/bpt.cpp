@@ -71,14 +71,16 @@ class LineReader {
   std::int64_t last_token_end_ = 1;
 };
 
-// The tokens of a line that must hold exactly `count` values. A missing value is reported just
-// after the last token of the line, a surplus one at its own column.
-std::vector<LineReader::Token> expect_line(LineReader& reader, std::size_t count, const std::string& what) {
+// The tokens of a line that must hold exactly `count` values, `what()` (called only for the
+// message: a file has a line per control point) saying what they are. A missing value is
+// reported just after the last token of the line, a surplus one at its own column.
+template <class What>
+std::vector<LineReader::Token> expect_line(LineReader& reader, std::size_t count, const What& what) {
   std::vector<LineReader::Token> tokens = reader.next_line();
-  if (tokens.empty()) reader.fail_at_end("unexpected end of file: expected " + what);
+  if (tokens.empty()) reader.fail_at_end("unexpected end of file: expected " + std::string(what()));
   if (tokens.size() != count) {
     reader.fail(tokens.size() > count ? tokens[count].column : tokens.back().end_column(),
-                detail::message("expected ", what, " (", count, count == 1 ? " number" : " numbers", "), found ",
+                detail::message("expected ", what(), " (", count, count == 1 ? " number" : " numbers", "), found ",
                                 tokens.size()));
   }
   return tokens;
@@ -106,12 +108,12 @@ double parse_number(const LineReader& reader, const LineReader::Token& token) {
 
 std::vector<BezierPatch3> parse_bpt(std::string_view text, const std::string& name) {
   LineReader reader(text, name);
-  const auto header = expect_line(reader, 1, "the number of patches");
+  const auto header = expect_line(reader, 1, [] { return "the number of patches"; });
   const std::int64_t count = parse_integer(reader, header[0], "the number of patches");
   if (count < 1) reader.fail(header[0].column, detail::message("the number of patches must be at least 1, found ", count));
   std::vector<BezierPatch3> patches;  // not reserved: `count` is not trusted before its data is read
   for (std::int64_t p = 0; p < count; ++p) {
-    const auto degrees = expect_line(reader, 2, detail::message("the degrees 'n m' of patch ", p));
+    const auto degrees = expect_line(reader, 2, [&] { return detail::message("the degrees 'n m' of patch ", p); });
     const std::int64_t n = parse_integer(reader, degrees[0], "degree n");
     const std::int64_t m = parse_integer(reader, degrees[1], "degree m");
     for (const auto& [degree, token] : {std::pair{n, degrees[0]}, std::pair{m, degrees[1]}}) {
@@ -123,7 +125,7 @@ std::vector<BezierPatch3> parse_bpt(std::string_view text, const std::string& na
     std::vector<Vec3> control_points;
     control_points.reserve(static_cast<std::size_t>(points));  // at most 65^2, bounded by the degree limit
     for (std::int64_t k = 0; k < points; ++k) {
-      const auto xyz = expect_line(reader, 3, detail::message("point ", k, " of patch ", p, " as 'x y z'"));
+      const auto xyz = expect_line(reader, 3, [&] { return detail::message("point ", k, " of patch ", p, " as 'x y z'"); });
       control_points.emplace_back(parse_number(reader, xyz[0]), parse_number(reader, xyz[1]), parse_number(reader, xyz[2]));
     }
     patches.emplace_back(static_cast<int>(n), static_cast<int>(m), std::move(control_points));

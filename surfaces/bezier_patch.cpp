@@ -246,9 +246,12 @@ BezierPatch<Dim> elevate_degree(const BezierPatch<Dim>& patch, int times_u, int 
   if (times_u < 0 || times_v < 0) {
     throw InvalidInput(detail::message("elevate_degree: times (", times_u, ", ", times_v, ") are negative"));
   }
-  BezierPatch<Dim> result = map_rows(patch, [times_u](const std::vector<Point<Dim>>& r) {
+  // Elevating by 0 is the identity (each row or column copied as it is): skipped, since patch
+  // sets compare every shared edge at the higher of its two degrees, mostly equal.
+  BezierPatch<Dim> result = times_u == 0 ? patch : map_rows(patch, [times_u](const std::vector<Point<Dim>>& r) {
     return elevate_degree(BezierCurve<Dim>(r), times_u).control_points();
   });
+  if (times_v == 0) return result;
   return map_columns(result, [times_v](const std::vector<Point<Dim>>& c) {
     return elevate_degree(BezierCurve<Dim>(c), times_v).control_points();
   });

@@ -99,10 +99,13 @@ EdgeContinuity edge_continuity(const BezierPatch3& first_patch, PatchEdge first_
   EdgeContinuity result{
       detail::max_distance(row_from_edge(first, first_edge, 0), row_from_edge(second, second_edge, 0), reversed),
       columns_ck(first, first_edge, second, second_edge, reversed, relative_tolerance), false, 0.0};
-  // G^1 from sampled normals.
-  result.max_normal_angle = max_normal_angle([&](double u, double v) { return unit_normal(first, u, v); }, first_edge,
-                                             [&](double u, double v) { return unit_normal(second, u, v); }, second_edge,
-                                             reversed, 4 * std::max(first.degree_u(), first.degree_v()) + 1);
+  // G^1 from sampled normals (each patch's degeneracy thresholds found once for its samples).
+  const detail::DegeneracyThresholds first_thresholds = detail::degeneracy_thresholds(first);
+  const detail::DegeneracyThresholds second_thresholds = detail::degeneracy_thresholds(second);
+  result.max_normal_angle = max_normal_angle(
+      [&](double u, double v) { return detail::unit_normal(first, u, v, first_thresholds); }, first_edge,
+      [&](double u, double v) { return detail::unit_normal(second, u, v, second_thresholds); }, second_edge, reversed,
+      4 * std::max(first.degree_u(), first.degree_v()) + 1);
   result.g1 = result.ck >= 0 && result.max_normal_angle <= g1_angle;
   return result;
 }

@@ -191,7 +191,10 @@ void first_derivatives(const BezierPatch3& patch, double u, double v, Vec3& fu, 
 }  // namespace
 
 Vec3 unit_normal(const BezierPatch3& patch, double u, double v) {
-  const detail::DegeneracyThresholds thresholds = detail::degeneracy_thresholds(patch);
+  return detail::unit_normal(patch, u, v, detail::degeneracy_thresholds(patch));
+}
+
+Vec3 detail::unit_normal(const BezierPatch3& patch, double u, double v, const DegeneracyThresholds& thresholds) {
   if (!std::isfinite(u) || !std::isfinite(v)) (void)partial_derivatives(patch, u, v, 1);  // throws InvalidInput
   Vec3 fu, fv;
   first_derivatives(patch, u, v, fu, fv);

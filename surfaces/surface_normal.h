@@ -70,6 +70,10 @@ DegeneracyThresholds degeneracy_thresholds(const RationalBezierPatch& patch);
 /// part or below the rounding it can carry there, 2 noise (|F_u| + |F_v|).
 bool first_normal_vanishes(const Vec3& du, const Vec3& dv, const DegeneracyThresholds& thresholds);
 
+/// unit_normal(patch, u, v) with the patch's degeneracy_thresholds found by the caller (once for
+/// many points of one patch): the same value, bit for bit.
+Vec3 unit_normal(const BezierPatch3& patch, double u, double v, const DegeneracyThresholds& thresholds);
+
 /// The limit unit normal from a derivative table of order >= 1 (see the file comment), judged by
 /// the patch's degeneracy_thresholds; n and m its degrees.
 Vec3 limit_unit_normal(const PartialDerivatives<3>& derivatives, double u, double v,
