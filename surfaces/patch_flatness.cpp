@@ -424,50 +424,59 @@ namespace {
 // The control points of a degree-n Bezier segment over [t0, t1] are linear in the whole curve's:
 // Q_i = sum_k S(i, k) P_k, Q_i the blossom at (t0 x (n - i), t1 x i). Each column of S is that
 // blossom of the k-th unit control polygon, by de Casteljau steps at those parameters.
-Eigen::MatrixXd segment_matrix(int n, double t0, double t1) {
-  Eigen::MatrixXd S(n + 1, n + 1);
-  std::vector<double> work(static_cast<std::size_t>(n) + 1);
+template <class Matrix>
+Matrix segment_matrix(int n, double t0, double t1) {
+  Matrix S(n + 1, n + 1);
+  std::array<double, 66> work{};  // n <= 64 (BPT's degree limit; larger nets take the heap path)
+  std::vector<double> heap;
+  double* w = work.data();
+  if (n + 1 > static_cast<int>(work.size())) {
+    heap.resize(static_cast<std::size_t>(n) + 1);
+    w = heap.data();
+  }
   for (int k = 0; k <= n; ++k) {
     for (int i = 0; i <= n; ++i) {
-      std::fill(work.begin(), work.end(), 0.0);
-      work[static_cast<std::size_t>(k)] = 1.0;
+      std::fill(w, w + n + 1, 0.0);
+      w[k] = 1.0;
       for (int step = 0; step < n; ++step) {
         const double t = step < n - i ? t0 : t1;
-        for (int j = 0; j + step < n; ++j) work[j] = (1.0 - t) * work[j] + t * work[j + 1];
+        for (int j = 0; j + step < n; ++j) w[j] = (1.0 - t) * w[j] + t * w[j + 1];
       }
-      S(i, k) = work[0];
+      S(i, k) = w[0];
     }
   }
   return S;
 }
 
-}  // namespace
-
-std::vector<SecondDerivativeBounds> piece_second_derivative_bounds(const BezierPatch3& patch, int pieces) {
-  if (pieces < 1 || pieces > 64) {
-    throw InvalidInput(detail::message("second_derivative_bounds: ", pieces, " pieces is not in [1, 64]"));
-  }
-  if (pieces == 1) return {second_derivative_bounds(patch)};
+// piece_second_derivative_bounds on nets held in `Matrix` (the heap for any degree, the stack up
+// to degree 7 in both directions: a patch set's pieces are mostly bicubic). The products are
+// Eigen's coefficient-wise ones either way (the sizes stay below its GEMM threshold), so the
+// bounds are the same bit for bit.
+template <class Matrix>
+std::vector<SecondDerivativeBounds> piece_bounds(const BezierPatch3& patch, int pieces) {
   // The net of piece (a, b) is S_a P S_b^T per coordinate (segment matrices in u and v): the same
   // points as de Casteljau sub-patches, without building a patch per piece.
   const int n = patch.degree_u();
   const int m = patch.degree_v();
-  std::array<Eigen::MatrixXd, 3> net;
+  std::array<Matrix, 3> net;
   for (int c = 0; c < 3; ++c) {
     net[c].resize(n + 1, m + 1);
     for (int j = 0; j <= m; ++j) {
       for (int i = 0; i <= n; ++i) net[c](i, j) = patch.control_point(i, j)[c];
     }
   }
-  std::vector<Eigen::MatrixXd> su;
-  std::vector<Eigen::MatrixXd> sv;
+  std::vector<Matrix> su;
+  std::vector<Matrix> sv;
+  su.reserve(static_cast<std::size_t>(pieces));
+  sv.reserve(static_cast<std::size_t>(pieces));
   for (int a = 0; a < pieces; ++a) {
-    su.push_back(segment_matrix(n, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces));
-    sv.push_back(segment_matrix(m, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces).transpose());
+    su.push_back(segment_matrix<Matrix>(n, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces));
+    sv.push_back(
+        segment_matrix<Matrix>(m, static_cast<double>(a) / pieces, static_cast<double>(a + 1) / pieces).transpose());
   }
   std::vector<SecondDerivativeBounds> bounds(static_cast<std::size_t>(pieces) * static_cast<std::size_t>(pieces));
-  std::array<Eigen::MatrixXd, 3> row;
-  std::array<Eigen::MatrixXd, 3> piece;
+  std::array<Matrix, 3> row;
+  std::array<Matrix, 3> piece;
   for (int b = 0; b < pieces; ++b) {
     for (int c = 0; c < 3; ++c) row[c].noalias() = net[c] * sv[static_cast<std::size_t>(b)];
     for (int a = 0; a < pieces; ++a) {
@@ -478,6 +487,19 @@ std::vector<SecondDerivativeBounds> piece_second_derivative_bounds(const BezierP
     }
   }
   return bounds;
+}
+
+}  // namespace
+
+std::vector<SecondDerivativeBounds> piece_second_derivative_bounds(const BezierPatch3& patch, int pieces) {
+  if (pieces < 1 || pieces > 64) {
+    throw InvalidInput(detail::message("second_derivative_bounds: ", pieces, " pieces is not in [1, 64]"));
+  }
+  if (pieces == 1) return {second_derivative_bounds(patch)};
+  if (patch.degree_u() <= 7 && patch.degree_v() <= 7) {
+    return piece_bounds<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 8, 8>>(patch, pieces);
+  }
+  return piece_bounds<Eigen::MatrixXd>(patch, pieces);
 }
 
 SecondDerivativeBounds merged_bounds(const std::vector<SecondDerivativeBounds>& bounds) {
