@@ -179,6 +179,8 @@ class PatchSet {
 
  private:
   PatchSet() = default;
+  // The diagonal of the box of every control point of `nets` (not empty).
+  static double control_box_diagonal(const std::vector<BezierPatch3>& nets);
   // The nets, and per patch the rational patch where it is one.
   using Kinds = std::pair<std::vector<BezierPatch3>, std::vector<std::optional<RationalBezierPatch>>>;
   static Kinds split_kinds(std::span<const AnyBezierPatch> patches);
