@@ -5,9 +5,6 @@
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 namespace patchwork {
 
@@ -23,12 +20,6 @@ void advise_huge_pages(const void* data, std::size_t bytes) noexcept {
 #else
   (void)data;
   (void)bytes;
-#endif
-}
-
-void return_free_memory() noexcept {
-#if defined(__GLIBC__)
-  (void)malloc_trim(0);
 #endif
 }
 

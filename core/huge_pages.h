@@ -14,12 +14,6 @@ namespace patchwork {
 /// (no-op below 4 MiB, off Linux, or if the kernel refuses).
 void advise_huge_pages(const void* data, std::size_t bytes) noexcept;
 
-/// Gives the allocator's free pages back to the kernel (glibc's malloc_trim; elsewhere nothing).
-/// free() returns a large block to the kernel only if it was mapped on its own; glibc maps
-/// blocks below a threshold that grows up to 32 MiB inside its heap, and keeps them there once
-/// freed, resident: a caller that frees many such blocks while making a larger one calls this.
-void return_free_memory() noexcept;
-
 /// v.reserve(n), then advise_huge_pages on the new storage before anything is written to it.
 template <class T, class Allocator>
 void reserve_huge(std::vector<T, Allocator>& v, std::size_t n) {

@@ -14,21 +14,21 @@
 namespace patchwork {
 namespace {
 
-// `parts`' arrays `member` end to end in `merged`, each part's freed (and its pages given back)
-// once copied, so the peak is the parts and what of `merged` is written so far, not both whole. `shift(k, value)` maps
-// part k's values.
-template <class T, class Member, class Shift>
-void append_parts(std::vector<RenderMesh>& parts, Member member, std::vector<T>& merged, const Shift& shift) {
-  std::size_t total = 0;
-  for (const RenderMesh& part : parts) total += (part.*member).size();
-  merged.clear();
-  reserve_huge(merged, total);
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    std::vector<T>& values = parts[k].*member;
-    for (const T& value : values) merged.push_back(shift(k, value));
-    std::vector<T>().swap(values);
-    return_free_memory();
+// `from`, each value mapped by `shift`, appended to `to`, which is reserved for `expected` values
+// when it is first written to (the first batch's share scaled to the whole set; room that is never
+// written takes no memory). Where `to` has no room all the same, it is made anew with twice the
+// room (huge pages advised; its old storage freed at once): the peak is then the arrays plus one
+// array's old storage, never a second mesh.
+template <class T, class Shift>
+void append_shifted(std::vector<T>& to, const std::vector<T>& from, double expected, const Shift& shift) {
+  if (to.capacity() - to.size() < from.size()) {
+    std::vector<T> grown;
+    const auto first = static_cast<std::size_t>(to.empty() ? expected : 0.0);
+    reserve_huge(grown, std::max({2 * to.capacity(), to.size() + from.size(), first}));
+    grown.insert(grown.end(), to.begin(), to.end());
+    to.swap(grown);
   }
+  for (const T& value : from) to.push_back(shift(value));
 }
 
 }  // namespace
@@ -66,17 +66,15 @@ Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOption
         detail::relative_tolerance_times(*options.relative_tolerance, detail::tight_or_control_diagonal(set, true));
   }
   Tessellation result;
-  std::vector<RenderMesh> parts;
-  parts.reserve(batches.size());
-  std::vector<std::vector<std::uint32_t>> patches_of_parts;
-  patches_of_parts.reserve(batches.size());
+  RenderMesh& mesh = result.mesh;
   // The budget is checked on the tessellator's triangle estimate, as in the single run, summed
   // over the batches: a batch may have what the estimates of the batches before leave of
   // max_triangles (each batch's estimate is of its own split, so the sum can differ a little
   // from the single run's estimate).
   double estimated = 0.0;
-  // One Tessellation for every batch, so its scratch (patterns, per-piece arrays) keeps its
-  // storage from batch to batch; each batch's mesh is moved out of it.
+  std::size_t welded = 0;  // position ids before the batch
+  // One Tessellation for every batch, so its arrays and scratch (patterns, per-piece arrays)
+  // keep their storage from batch to batch; each batch's mesh is appended to the result's.
   Tessellation work;
   set.for_each_subset(batches, [&](std::size_t b, const PatchSet& subset) {
     batch_options.max_triangles = options.max_triangles - static_cast<std::int64_t>(estimated);
@@ -93,6 +91,29 @@ Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOption
                                          " triangles allowed): ", what));
     }
     estimated += work.scratch.get().estimated_triangles;
+    const std::size_t first_vertex = mesh.vertex_count();
+    if (first_vertex + work.mesh.vertex_count() > 0xfffffffeu) {
+      throw InvalidInput(
+          detail::message("tessellate: ", first_vertex + work.mesh.vertex_count(), " vertices exceed 32-bit indices"));
+    }
+    const std::vector<std::uint32_t>& ids = work.mesh.position_ids;
+    const std::size_t batch_ids = ids.empty() ? 0 : 1 + *std::max_element(ids.begin(), ids.end());
+    // The whole set's arrays, guessed from this batch's (a quarter more than its share; only a
+    // guess: the arrays grow past it if they must).
+    const double share = 1.25 * static_cast<double>(set.count()) / static_cast<double>(batches[b].size());
+    const auto expected = [&](const auto& array) { return share * static_cast<double>(array.size()); };
+    const auto same = [](const auto& value) { return value; };
+    append_shifted(mesh.positions, work.mesh.positions, expected(work.mesh.positions), same);
+    append_shifted(mesh.normals, work.mesh.normals, expected(work.mesh.normals), same);
+    append_shifted(mesh.uvs, work.mesh.uvs, expected(work.mesh.uvs), same);
+    append_shifted(mesh.tangents, work.mesh.tangents, expected(work.mesh.tangents), same);
+    append_shifted(mesh.position_ids, ids, expected(ids),
+                   [&](std::uint32_t id) { return id + static_cast<std::uint32_t>(welded); });
+    append_shifted(mesh.indices, work.mesh.indices, expected(work.mesh.indices),
+                   [&](std::uint32_t index) { return index + static_cast<std::uint32_t>(first_vertex); });
+    append_shifted(result.triangle_patches, work.triangle_patches, expected(work.triangle_patches),
+                   [&](std::uint32_t patch) { return batches[b][patch]; });
+    welded += batch_ids;
     result.tolerance = std::max(result.tolerance, work.tolerance);
     result.error_bound = std::max(result.error_bound, work.error_bound);
     result.weld_gap = std::max(result.weld_gap, work.weld_gap);
@@ -101,44 +122,7 @@ Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOption
     result.culled_patches += work.culled_patches;
     result.culled_triangles += work.culled_triangles;
     result.welded_vertices += work.welded_vertices;
-    for (std::uint32_t& patch : work.triangle_patches) patch = batches[b][patch];
-    patches_of_parts.push_back(std::move(work.triangle_patches));
-    work.triangle_patches = {};
-    parts.push_back(std::move(work.mesh));
-    work.mesh = RenderMesh();
   });
-  work = Tessellation();
-  // The parts' first vertices and position ids.
-  std::vector<std::uint32_t> first_vertex(parts.size(), 0);
-  std::vector<std::uint32_t> first_id(parts.size(), 0);
-  std::size_t vertices = 0;
-  std::size_t ids = 0;
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    first_vertex[k] = static_cast<std::uint32_t>(vertices);
-    first_id[k] = static_cast<std::uint32_t>(ids);
-    vertices += parts[k].vertex_count();
-    ids += parts[k].position_ids.empty() ? 0 : 1 + *std::max_element(parts[k].position_ids.begin(), parts[k].position_ids.end());
-    if (vertices > 0xfffffffeu) {
-      throw InvalidInput(detail::message("tessellate: ", vertices, " vertices exceed 32-bit indices"));
-    }
-  }
-  const auto same = [](std::size_t, const auto& value) { return value; };
-  RenderMesh& mesh = result.mesh;
-  append_parts(parts, &RenderMesh::positions, mesh.positions, same);
-  append_parts(parts, &RenderMesh::normals, mesh.normals, same);
-  append_parts(parts, &RenderMesh::uvs, mesh.uvs, same);
-  append_parts(parts, &RenderMesh::tangents, mesh.tangents, same);
-  append_parts(parts, &RenderMesh::position_ids, mesh.position_ids,
-               [&](std::size_t k, std::uint32_t id) { return id + first_id[k]; });
-  append_parts(parts, &RenderMesh::indices, mesh.indices,
-               [&](std::size_t k, std::uint32_t index) { return index + first_vertex[k]; });
-  std::size_t total_triangles = 0;
-  for (const std::vector<std::uint32_t>& patches : patches_of_parts) total_triangles += patches.size();
-  reserve_huge(result.triangle_patches, total_triangles);
-  for (std::vector<std::uint32_t>& patches : patches_of_parts) {
-    result.triangle_patches.insert(result.triangle_patches.end(), patches.begin(), patches.end());
-    std::vector<std::uint32_t>().swap(patches);
-  }
   result.tessellation_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result.measure_seconds;
   return result;
