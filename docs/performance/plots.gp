@@ -75,8 +75,8 @@ set terminal pngcairo size 900,600 font ',11'
 set output 'scale.png'
 set logscale xy
 set xrange [16:65536]
-set yrange [0.00293013:21.857]
-set y2range [2.44224:2189.16]
+set yrange [0.00200515:16.6583]
+set y2range [2.36339:2227.4]
 set xlabel 'patches'
 set ylabel 'seconds'
 set y2label 'peak memory, MB'
@@ -85,4 +85,4 @@ set ytics nomirror
 set y2tics
 set key left top
 set grid
-plot 'scale.dat' using 1:2 with linespoints title 'whole process, seconds', x * 0.000217049 with lines dt 2 title 'linear (seconds)', 'scale.dat' using 1:3 axes x1y2 with linespoints title 'peak memory, MB', x * 0.068832 axes x1y2 with lines dt 3 title 'linear (MB)'
+plot 'scale.dat' using 1:2 with linespoints title 'whole process, seconds', x * 0.000131705 with lines dt 2 title 'linear (seconds)', 'scale.dat' using 1:3 axes x1y2 with linespoints title 'peak memory, MB', x * 0.068544 axes x1y2 with lines dt 3 title 'linear (MB)'
