@@ -6,6 +6,7 @@
 #include <string_view>
 #include <utility>
 
+#include "core/assert.h"
 #include "core/errors.h"
 #include "core/huge_pages.h"
 #include "surfaces/prepared_surface.h"
@@ -97,7 +98,9 @@ Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOption
           detail::message("tessellate: ", first_vertex + work.mesh.vertex_count(), " vertices exceed 32-bit indices"));
     }
     const std::vector<std::uint32_t>& ids = work.mesh.position_ids;
-    const std::size_t batch_ids = ids.empty() ? 0 : 1 + *std::max_element(ids.begin(), ids.end());
+    // The batch's position ids are 0 .. welded_vertices - 1 (Tessellation::welded_vertices).
+    PATCHWORK_ASSERT(ids.empty() || *std::max_element(ids.begin(), ids.end()) < work.welded_vertices,
+                     "position ids below the welded count");
     // The whole set's arrays, guessed from this batch's (a quarter more than its share; only a
     // guess: the arrays grow past it if they must).
     const double share = 1.25 * static_cast<double>(set.count()) / static_cast<double>(batches[b].size());
@@ -113,7 +116,7 @@ Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOption
                    [&](std::uint32_t index) { return index + static_cast<std::uint32_t>(first_vertex); });
     append_shifted(result.triangle_patches, work.triangle_patches, expected(work.triangle_patches),
                    [&](std::uint32_t patch) { return batches[b][patch]; });
-    welded += batch_ids;
+    welded += work.welded_vertices;
     result.tolerance = std::max(result.tolerance, work.tolerance);
     result.error_bound = std::max(result.error_bound, work.error_bound);
     result.weld_gap = std::max(result.weld_gap, work.weld_gap);
@@ -121,8 +124,8 @@ Tessellation tessellate_in_batches(const PatchSet& set, const TessellationOption
     result.measure_seconds += work.measure_seconds;
     result.culled_patches += work.culled_patches;
     result.culled_triangles += work.culled_triangles;
-    result.welded_vertices += work.welded_vertices;
   });
+  result.welded_vertices = welded;
   result.tessellation_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() - result.measure_seconds;
   return result;
